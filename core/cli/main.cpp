@@ -1,0 +1,58 @@
+// touchcloud: run, validate and inspect visuotactile pipelines.
+#include <iostream>
+
+#include "touchcloud/error.hpp"
+#include "touchcloud/version.hpp"
+#include "verbs.hpp"
+
+namespace {
+
+// Located diagnostics print compiler-style (FILE:LINE:COL: error: ...), one a
+// line; the last line always begins "touchcloud: error:".
+void report(const touchcloud::InputError& e) {
+  const auto& diags = e.diagnostics();
+  if (diags.size() == 1 && diags[0].where.line == 0) {
+    const std::string at = diags[0].where.str();
+    std::cerr << "touchcloud: error: " << (at.empty() ? "" : at + ": ") << diags[0].message << "\n";
+    return;
+  }
+  for (const auto& d : diags) std::cerr << d.str() << "\n";
+  std::cerr << "touchcloud: error: " << diags.size() << (diags.size() == 1 ? " problem" : " problems")
+            << " found; nothing was run or written\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace touchcloud::cli;
+  CLI::App app{"touchcloud " + std::string(touchcloud::kVersion) +
+               ": point clouds and shapes from visuotactile sensors"};
+  app.set_version_flag("--version", std::string(touchcloud::kVersion));
+  app.require_subcommand(1);
+  const std::vector<Action*> actions = {add_run_verb(app), add_validate_verb(app), add_plugins_verb(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "touchcloud: error: " << e.what() << " (see touchcloud --help)\n";
+    return kExitBadInput;
+  }
+
+  try {
+    for (Action* a : actions)
+      if (*a) return (*a)();
+    return kExitBadInput;
+  } catch (const touchcloud::InputError& e) {
+    report(e);
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "touchcloud: error: " << e.what() << "\n";
+    return kExitRunFailed;
+  }
+}

@@ -1,0 +1,118 @@
+// touchcloud plugins [NAME] [--json]: what plugins there are and what they take.
+#include <iomanip>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "touchcloud/plugin_registry.hpp"
+#include "verbs.hpp"
+
+namespace touchcloud::cli {
+
+namespace {
+
+nlohmann::json param_json(const ParamSpec& p) {
+  nlohmann::json j = {{"name", p.name}, {"type", to_string(p.type)}, {"unit", p.unit}, {"doc", p.doc},
+                      {"rule", p.rule()}};
+  std::visit([&j](const auto& v) { j["default"] = v; }, p.default_value);
+  if (p.min) j["min"] = {{"value", *p.min}, {"exclusive", p.min_exclusive}};
+  if (p.max) j["max"] = {{"value", *p.max}, {"exclusive", p.max_exclusive}};
+  if (!p.choices.empty()) j["choices"] = p.choices;
+  if (p.list_size) j["size"] = *p.list_size;
+  if (p.path_role == PathRole::InputFile) j["file"] = "input";
+  if (p.path_role == PathRole::OutputFile) j["file"] = "output";
+  return j;
+}
+
+nlohmann::json port_json(const PortSpec& p) {
+  return {{"name", p.name}, {"type", p.type}, {"doc", p.doc}, {"optional", p.optional}};
+}
+
+nlohmann::json plugin_json(const LoadedPlugin& p) {
+  nlohmann::json j = {{"name", p.name()},   {"description", p.description()},
+                      {"library", p.library().string()}, {"built_for", p.toolkit_version()}};
+  j["parameters"] = nlohmann::json::array();
+  for (const auto& s : p.schema().parameters) j["parameters"].push_back(param_json(s));
+  j["inputs"] = nlohmann::json::array();
+  for (const auto& s : p.schema().inputs) j["inputs"].push_back(port_json(s));
+  j["outputs"] = nlohmann::json::array();
+  for (const auto& s : p.schema().outputs) j["outputs"].push_back(port_json(s));
+  return j;
+}
+
+void print_parameter(const ParamSpec& p) {
+  std::string type = to_string(p.type);
+  if (p.path_role == PathRole::InputFile) type = "input file";
+  if (p.path_role == PathRole::OutputFile) type = "output file";
+  std::cout << "    " << std::left << std::setw(22) << p.name << " " << std::setw(15) << type
+            << " default " << format_value(p.default_value) << (p.unit.empty() ? "" : " " + p.unit);
+  if (!p.rule().empty()) std::cout << "; " << p.rule();
+  std::cout << "\n" << std::string(28, ' ') << p.doc << "\n";
+}
+
+void print_plugin(const LoadedPlugin& p, bool full) {
+  std::cout << p.name() << " - " << p.description() << "\n";
+  if (full) std::cout << "  library: " << p.library().string() << " (built for touchcloud " << p.toolkit_version() << ")\n";
+  const auto& s = p.schema();
+  if (!s.parameters.empty()) {
+    std::cout << "  parameters:\n";
+    for (const auto& param : s.parameters) print_parameter(param);
+  }
+  if (!full) return;
+  const auto ports = [](const char* title, const std::vector<PortSpec>& list) {
+    if (list.empty()) return;
+    std::cout << "  " << title << ":\n";
+    for (const auto& port : list)
+      std::cout << "    " << std::left << std::setw(22) << port.name << " " << std::setw(15) << port.type
+                << (port.optional ? " (optional) " : " ") << port.doc << "\n";
+  };
+  ports("inputs", s.inputs);
+  ports("outputs", s.outputs);
+}
+
+}  // namespace
+
+Action* add_plugins_verb(CLI::App& app) {
+  struct Options {
+    std::string name;
+    bool json = false;
+  };
+  static Options o;
+  static Action action;
+  auto* cmd = app.add_subcommand("plugins", "List the plugins on the search path, or describe one");
+  cmd->add_option("name", o.name, "plugin to describe in full");
+  cmd->add_flag("--json", o.json, "machine-readable output");
+  cmd->callback([] {
+    action = [] {
+      PluginRegistry registry;
+      if (!o.name.empty()) {
+        const LoadedPlugin& p = registry.load(o.name);
+        if (o.json) std::cout << plugin_json(p).dump(2) << "\n";
+        else print_plugin(p, true);
+        return kExitOk;
+      }
+      nlohmann::json all = nlohmann::json::array();
+      int failed = 0;
+      for (const auto& name : registry.available()) {
+        try {
+          const LoadedPlugin& p = registry.load(name);
+          if (o.json) all.push_back(plugin_json(p));
+          else print_plugin(p, false), std::cout << "\n";
+        } catch (const InputError& e) {
+          ++failed;
+          std::cerr << "touchcloud: error: " << e.what() << "\n";
+        }
+      }
+      if (o.json) std::cout << all.dump(2) << "\n";
+      else {
+        std::cout << "search path:";
+        for (const auto& f : registry.search_path()) std::cout << " " << f.string();
+        std::cout << "\n";
+      }
+      return failed ? kExitBadInput : kExitOk;
+    };
+  });
+  return &action;
+}
+
+}  // namespace touchcloud::cli

@@ -1,0 +1,22 @@
+// The verbs of the touchcloud CLI. Each adds its subcommand to the app and
+// returns the action to run when that subcommand was parsed.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace touchcloud::cli {
+
+using Action = std::function<int()>;  // returns the exit status
+
+Action* add_run_verb(CLI::App& app);
+Action* add_validate_verb(CLI::App& app);
+Action* add_plugins_verb(CLI::App& app);
+
+// Exit statuses of the CLI contract.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitRunFailed = 1;
+inline constexpr int kExitBadInput = 2;
+
+}  // namespace touchcloud::cli

@@ -1,0 +1,93 @@
+// Pipelines: YAML files that name stages, their plugins and parameters, how
+// outputs feed inputs, and loops with a budget.
+//
+//   pipeline: downsample_cloud
+//   stages:
+//     - id: read
+//       plugin: cloud_reader
+//       params: {path: ../sample_clouds/fox_mask/ground_truth.pcd}
+//     - id: down
+//       plugin: downsample
+//       params: {method: voxel, leaf_size_mm: 2.0}
+//       inputs: {cloud: read.cloud}
+//     - id: explore
+//       loop:
+//         max_iterations: 30          # the budget
+//         until: plan.done            # optional: a bool output in the body
+//         stages: [...]               # inputs may read `stage.port@previous`,
+//                                     # the value from the previous iteration
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "touchcloud/error.hpp"
+#include "touchcloud/plugin_registry.hpp"
+#include "touchcloud/run_context.hpp"
+
+namespace touchcloud {
+
+// `--set stage.param=value` from the command line.
+struct Override {
+  std::string key;    // "stage.param"
+  std::string value;  // parsed as YAML, so lists read [1, 2, 3]
+};
+Override parse_override(const std::string& text);  // "k=v"; InputError otherwise
+
+class ResolvedPipeline;  // private to the runtime
+
+// A parsed, resolved and validated pipeline, ready to run. Every problem is
+// reported at load, as InputError diagnostics with FILE:LINE:COL.
+class Pipeline {
+ public:
+  // Parses, applies overrides, loads plugins, checks parameters, wiring and
+  // input files (each stage's check hook). Throws InputError with all
+  // diagnostics found.
+  static Pipeline load(const std::filesystem::path& file, const std::vector<Override>& overrides,
+                       PluginRegistry& registry);
+  Pipeline(Pipeline&&) noexcept;
+  Pipeline& operator=(Pipeline&&) noexcept;
+  ~Pipeline();
+
+  const std::string& name() const;
+  const std::filesystem::path& file() const;
+  // Every stage id and its resolved parameters ("id" -> "param" -> value).
+  std::map<std::string, std::map<std::string, ParamValue>> parameters() const;
+
+  ResolvedPipeline& resolved() { return *impl_; }
+
+ private:
+  explicit Pipeline(std::unique_ptr<ResolvedPipeline> impl);
+  std::unique_ptr<ResolvedPipeline> impl_;
+};
+
+struct RunOptions {
+  std::uint64_t seed = 0;
+  std::filesystem::path out_dir;  // empty: write no files (outputs are refused)
+  bool quiet = false;
+};
+
+struct StageTiming {
+  std::string id, plugin;
+  double configure_s = 0, process_s = 0, finish_s = 0;
+  std::size_t calls = 0;
+};
+
+struct RunResult {
+  RunRecord record;
+  std::vector<StageTiming> timings;  // in execution order
+  double wall_time_s = 0;
+  std::vector<std::pair<std::string, int>> loop_iterations;  // loop id, iterations run
+};
+
+// Runs a loaded pipeline. Outputs go to a staging folder inside out_dir and
+// are moved into place, with summary.json, only when the whole run succeeds.
+// InputError: bad data found while running (exit 2); RunError: a stage failed
+// (exit 1, the message names the stage).
+RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options);
+
+}  // namespace touchcloud

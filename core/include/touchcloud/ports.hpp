@@ -1,0 +1,99 @@
+// Ports: the named, typed inputs and outputs of a stage. A pipeline wires an
+// output `stage.port` to an input; validation checks the types match.
+//
+// A C++ type travels between stages once it has a data-type name:
+//   TOUCHCLOUD_DATA_TYPE(my::GelImage, "gel_image")
+// Values are held by value in std::any, so make them cheap to copy
+// (shared_ptr to const for anything large).
+#pragma once
+
+#include <any>
+#include <map>
+#include <string>
+#include <string_view>
+#include <typeinfo>
+#include <vector>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud {
+
+template <class T>
+struct DataTypeName;  // specialised by TOUCHCLOUD_DATA_TYPE
+
+#define TOUCHCLOUD_DATA_TYPE(CXX_TYPE, NAME)                  \
+  template <>                                                 \
+  struct touchcloud::DataTypeName<CXX_TYPE> {                 \
+    static constexpr std::string_view value = NAME;           \
+  }
+
+struct PortSpec {
+  std::string name;
+  std::string type;  // data-type name
+  std::string doc;
+  bool optional = false;  // inputs only: the stage runs without it
+};
+
+class PortSet {
+ public:
+  template <class T>
+  void input(std::string name, std::string doc) {
+    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false});
+  }
+  template <class T>
+  void optional_input(std::string name, std::string doc) {
+    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), true});
+  }
+  template <class T>
+  void output(std::string name, std::string doc) {
+    outputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false});
+  }
+  const std::vector<PortSpec>& inputs() const { return inputs_; }
+  const std::vector<PortSpec>& outputs() const { return outputs_; }
+  const PortSpec* find_input(std::string_view name) const;
+  const PortSpec* find_output(std::string_view name) const;
+
+ private:
+  std::vector<PortSpec> inputs_, outputs_;
+};
+
+// What one call of a stage's process hook reads and writes.
+class StageIO {
+ public:
+  StageIO(const PortSet& ports, std::map<std::string, std::any> inputs);
+
+  bool has(std::string_view input) const;
+  // The input's value; throws RunError when it is absent or of another type.
+  template <class T>
+  const T& input(std::string_view name) const {
+    const std::any& v = input_any(name);
+    if (const T* p = std::any_cast<T>(&v)) return *p;
+    throw RunError(type_mismatch(name, typeid(T).name(), v.type().name()));
+  }
+  // Null when the (optional) input is absent.
+  template <class T>
+  const T* optional_input(std::string_view name) const {
+    return has(name) ? &input<T>(name) : nullptr;
+  }
+  template <class T>
+  void output(std::string_view name, T value) {
+    set_output(name, DataTypeName<T>::value, std::any(std::move(value)));
+  }
+
+  std::map<std::string, std::any>& outputs() { return outputs_; }
+
+ private:
+  const std::any& input_any(std::string_view name) const;
+  std::string type_mismatch(std::string_view name, const char* wanted, const char* held) const;
+  void set_output(std::string_view name, std::string_view type, std::any value);
+
+  const PortSet& ports_;
+  std::map<std::string, std::any> inputs_;
+  std::map<std::string, std::any> outputs_;
+};
+
+}  // namespace touchcloud
+
+// Plain values that many stages exchange.
+TOUCHCLOUD_DATA_TYPE(bool, "bool");
+TOUCHCLOUD_DATA_TYPE(double, "number");

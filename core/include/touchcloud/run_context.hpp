@@ -1,0 +1,59 @@
+// What the runtime gives a stage while it runs: its random generator, the
+// loop iteration, metrics and notes for summary.json, output file names and a
+// log with the stage's prefix.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace touchcloud {
+
+struct MetricSeries {
+  std::string unit;
+  std::vector<double> values;  // one per report; in a loop, one per iteration
+};
+
+// Everything a run records, shared by the contexts of all its stages.
+struct RunRecord {
+  std::map<std::string, MetricSeries> metrics;  // key: "stage.metric"
+  std::map<std::string, std::string> notes;     // key: "stage.note"
+  std::vector<std::string> outputs;             // file names in the output folder
+  std::filesystem::path staging_dir;            // empty: this run writes no files
+  bool quiet = false;
+};
+
+class RunContext {
+ public:
+  RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record);
+
+  const std::string& stage_id() const { return stage_id_; }
+  std::uint64_t seed() const { return seed_; }
+  // This stage's generator, seeded from the run seed and the stage id, so a
+  // stage's draws do not depend on what other stages draw.
+  std::mt19937_64& rng() { return rng_; }
+  // Index of the current iteration of the innermost enclosing loop, -1 outside.
+  int iteration() const { return iteration_; }
+  void set_iteration(int i) { iteration_ = i; }
+
+  // A number for summary.json; finite, or RunError. Reported once per
+  // iteration inside a loop, it becomes a series.
+  void metric(const std::string& name, double value, const std::string& unit = "");
+  void note(const std::string& name, const std::string& text);
+  // Where to write an output file named `file_name` (relative to --out). The
+  // file appears in the output folder only when the whole run succeeds.
+  std::filesystem::path output_path(const std::string& file_name);
+  void log(const std::string& message) const;
+
+ private:
+  std::string stage_id_;
+  std::uint64_t seed_;
+  RunRecord& record_;
+  std::mt19937_64 rng_;
+  int iteration_ = -1;
+};
+
+}  // namespace touchcloud

@@ -1,0 +1,21 @@
+// Named coordinate frames. Transforms are written target_from_source, so
+// `base_from_sensor * p_sensor` is p in the base frame.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "touchcloud/ports.hpp"
+
+namespace touchcloud {
+
+enum class Frame { Camera, Sensor, Base };
+const char* to_string(Frame frame);
+
+// Pose of the sensor in the robot base frame {B}; translation in mm.
+struct SensorPose {
+  Eigen::Isometry3d base_from_sensor = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_DATA_TYPE(touchcloud::SensorPose, "pose");

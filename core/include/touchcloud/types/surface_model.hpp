@@ -1,0 +1,30 @@
+// A fitted surface z = f(x, y) in the base frame (mm), with its uncertainty.
+// Implemented by surface-fitting plugins (the Gaussian process in gp_surface).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "touchcloud/ports.hpp"
+
+namespace touchcloud {
+
+class SurfaceModel {
+ public:
+  virtual ~SurfaceModel() = default;
+  virtual std::size_t training_size() const = 0;
+  // Posterior mean at each row (x, y) of `xy`.
+  virtual Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const = 0;
+  // Posterior variance (mm^2) at each row; finite and >= 0.
+  virtual Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const = 0;
+  // Named hyperparameters with units in the name ("lengthscale_mm").
+  virtual std::map<std::string, double> hyperparameters() const = 0;
+};
+using SurfaceModelPtr = std::shared_ptr<const SurfaceModel>;
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_DATA_TYPE(touchcloud::SurfaceModelPtr, "surface_model");

@@ -1,0 +1,259 @@
+// YAML -> PipelineDoc, keeping the line and column of everything.
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <cmath>
+#include <fstream>
+#include <regex>
+
+#include "nearest_name.hpp"
+#include "pipeline_model.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud {
+
+SourceLocation location_of(const YAML::Node& node, const fs::path& file) {
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return {file.string(), 0, 0};
+  return {file.string(), mark.line + 1, mark.column + 1};
+}
+
+namespace {
+
+const std::regex kIdPattern("[A-Za-z_][A-Za-z0-9_]*");
+const std::regex kRefPattern("([A-Za-z_][A-Za-z0-9_]*)\\.([A-Za-z_][A-Za-z0-9_]*)(@previous)?");
+
+class Parser {
+ public:
+  Parser(fs::path file, std::vector<Diagnostic>& diagnostics) : file_(std::move(file)), diags_(diagnostics) {}
+
+  PipelineDoc parse(const YAML::Node& root) {
+    PipelineDoc doc;
+    doc.file = file_;
+    doc.name = file_.stem().string();
+    if (!root.IsMap()) {
+      error(root, "a pipeline is a mapping with 'pipeline' and 'stages'");
+      return doc;
+    }
+    check_keys(root, {"pipeline", "description", "stages"}, "pipeline");
+    if (const auto name = root["pipeline"]) {
+      if (name.IsScalar()) doc.name = name.Scalar();
+      else error(name, "'pipeline' is the pipeline's name, a string");
+    }
+    const auto stages = root["stages"];
+    if (!stages) error(root, "the pipeline has no 'stages'");
+    else doc.nodes = parse_nodes(stages);
+    return doc;
+  }
+
+ private:
+  void error(const YAML::Node& at, std::string message) {
+    diags_.push_back({location_of(at, file_), std::move(message)});
+  }
+
+  void check_keys(const YAML::Node& map, const std::vector<std::string>& allowed, const std::string& what) {
+    for (const auto& kv : map) {
+      const std::string key = kv.first.as<std::string>("");
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        error(kv.first, "unknown key '" + key + "' in " + what + did_you_mean(key, allowed) + " (allowed: " + list + ")");
+      }
+    }
+  }
+
+  std::vector<NodeDoc> parse_nodes(const YAML::Node& list) {
+    std::vector<NodeDoc> nodes;
+    if (!list.IsSequence()) {
+      error(list, "'stages' is a list of stages, each starting with '- id:'");
+      return nodes;
+    }
+    if (list.size() == 0) error(list, "'stages' is empty");
+    for (const auto& item : list) nodes.push_back(parse_node(item));
+    return nodes;
+  }
+
+  NodeDoc parse_node(const YAML::Node& item) {
+    NodeDoc node;
+    node.where = location_of(item, file_);
+    if (!item.IsMap()) {
+      error(item, "a stage is a mapping with 'id' and 'plugin' (or 'loop')");
+      return node;
+    }
+    const auto id = item["id"];
+    if (!id) error(item, "the stage has no 'id'");
+    else if (!id.IsScalar() || !std::regex_match(id.Scalar(), kIdPattern))
+      error(id, "stage id '" + (id.IsScalar() ? id.Scalar() : std::string("?")) +
+                    "' is not an identifier (letters, digits, '_'; not starting with a digit)");
+    else {
+      node.id = id.Scalar();
+      node.where = location_of(id, file_);
+    }
+
+    if (const auto loop = item["loop"]) {
+      check_keys(item, {"id", "loop", "description"}, "loop '" + node.id + "'");
+      node.is_loop = true;
+      parse_loop(loop, node);
+      return node;
+    }
+    check_keys(item, {"id", "plugin", "params", "inputs", "description"}, "stage '" + node.id + "'");
+    const auto plugin = item["plugin"];
+    if (!plugin) error(item, "stage '" + node.id + "' names no 'plugin' (or 'loop')");
+    else if (!plugin.IsScalar()) error(plugin, "'plugin' is a plugin name");
+    else {
+      node.plugin = plugin.Scalar();
+      node.plugin_where = location_of(plugin, file_);
+    }
+    if (const auto params = item["params"]) {
+      if (!params.IsMap()) error(params, "'params' is a mapping of parameter names to values");
+      else
+        for (const auto& kv : params)
+          node.params.push_back({kv.first.as<std::string>(""), kv.second,
+                                 location_of(kv.second.IsNull() ? kv.first : kv.second, file_), false});
+    }
+    if (const auto inputs = item["inputs"]) {
+      if (!inputs.IsMap()) error(inputs, "'inputs' maps this stage's inputs to 'stage.output'");
+      else
+        for (const auto& kv : inputs)
+          if (auto ref = parse_ref(kv.second)) {
+            ref->port = kv.first.as<std::string>("");
+            node.inputs.push_back(*ref);
+          }
+    }
+    return node;
+  }
+
+  void parse_loop(const YAML::Node& loop, NodeDoc& node) {
+    if (!loop.IsMap()) {
+      error(loop, "'loop' is a mapping with 'max_iterations' and 'stages'");
+      return;
+    }
+    check_keys(loop, {"max_iterations", "until", "stages"}, "loop '" + node.id + "'");
+    const auto max = loop["max_iterations"];
+    if (!max) error(loop, "loop '" + node.id + "' has no 'max_iterations' (its budget)");
+    else {
+      node.max_iterations_where = location_of(max, file_);
+      std::int64_t n = 0;
+      const std::string s = max.IsScalar() ? max.Scalar() : "";
+      const auto r = std::from_chars(s.data(), s.data() + s.size(), n);
+      if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+        error(max, "'max_iterations' must be an integer, got '" + s + "'");
+      else if (n < 1)
+        error(max, "'max_iterations' must be >= 1, got " + s);
+      else
+        node.max_iterations = n;
+    }
+    if (const auto until = loop["until"]) node.until = parse_ref(until);
+    const auto stages = loop["stages"];
+    if (!stages) error(loop, "loop '" + node.id + "' has no 'stages'");
+    else node.body = parse_nodes(stages);
+  }
+
+  std::optional<InputRefDoc> parse_ref(const YAML::Node& value) {
+    std::smatch m;
+    const std::string text = value.IsScalar() ? value.Scalar() : "";
+    if (!value.IsScalar() || !std::regex_match(text, m, kRefPattern)) {
+      error(value, "'" + text + "' is not an output reference: write 'stage.output' or 'stage.output@previous'");
+      return std::nullopt;
+    }
+    InputRefDoc ref;
+    ref.stage = m[1];
+    ref.output = m[2];
+    ref.previous = m[3].matched;
+    ref.where = location_of(value, file_);
+    return ref;
+  }
+
+  fs::path file_;
+  std::vector<Diagnostic>& diags_;
+};
+
+template <class T>
+bool parse_number(const std::string& s, T& out) {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size() && !s.empty();
+}
+
+bool parse_double(const std::string& text, double& out) {
+  // YAML allows a leading '+'; from_chars does not.
+  const std::string s = (!text.empty() && text[0] == '+') ? text.substr(1) : text;
+  return parse_number(s, out);
+}
+
+}  // namespace
+
+PipelineDoc parse_pipeline(const fs::path& file, std::vector<Diagnostic>& diagnostics) {
+  std::ifstream in(file);
+  if (!in) {
+    diagnostics.push_back({{file.string()}, "cannot read the pipeline file: " + std::string(std::strerror(errno))});
+    return {};
+  }
+  YAML::Node root;
+  try {
+    root = YAML::Load(in);
+  } catch (const YAML::Exception& e) {
+    diagnostics.push_back({{file.string(), e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg});
+    return {};
+  }
+  if (!root || root.IsNull()) {
+    diagnostics.push_back({{file.string()}, "the pipeline file is empty"});
+    return {};
+  }
+  return Parser(file, diagnostics).parse(root);
+}
+
+std::optional<ParamValue> convert_param(const ParamSpec& spec, const YAML::Node& value, std::string& error) {
+  if (!value || value.IsNull()) {
+    error = "has no value (expected " + std::string(to_string(spec.type)) + ")";
+    return std::nullopt;
+  }
+  const bool scalar = value.IsScalar();
+  const std::string s = scalar ? value.Scalar() : "";
+  switch (spec.type) {
+    case ParamType::Bool: {
+      if (scalar && (s == "true" || s == "false")) return ParamValue(s == "true");
+      error = "expected a bool (true or false), got '" + (scalar ? s : "a " + std::string(value.IsMap() ? "mapping" : "list")) + "'";
+      return std::nullopt;
+    }
+    case ParamType::Int: {
+      std::int64_t i = 0;
+      if (scalar && parse_number(s, i)) return ParamValue(i);
+      error = "expected an integer, got '" + (scalar ? s : std::string("a list or mapping")) + "'";
+      return std::nullopt;
+    }
+    case ParamType::Double: {
+      double d = 0;
+      if (scalar && parse_double(s, d)) return ParamValue(d);
+      error = "expected a number, got '" + (scalar ? s : std::string("a list or mapping")) + "'";
+      return std::nullopt;
+    }
+    case ParamType::String: {
+      if (scalar) return ParamValue(s);
+      error = "expected a string, got a list or mapping";
+      return std::nullopt;
+    }
+    case ParamType::DoubleList: {
+      if (!value.IsSequence()) {
+        error = "expected a list of numbers like [1, 2, 3], got '" + (scalar ? s : std::string("a mapping")) + "'";
+        return std::nullopt;
+      }
+      std::vector<double> list;
+      for (const auto& item : value) {
+        double d = 0;
+        if (!item.IsScalar() || !parse_double(item.Scalar(), d)) {
+          error = "expected a list of numbers, but element " + std::to_string(list.size()) + " is '" +
+                  (item.IsScalar() ? item.Scalar() : std::string("not a number")) + "'";
+          return std::nullopt;
+        }
+        list.push_back(d);
+      }
+      return ParamValue(list);
+    }
+  }
+  error = "unsupported parameter type";
+  return std::nullopt;
+}
+
+}  // namespace touchcloud

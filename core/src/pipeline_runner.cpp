@@ -1,0 +1,193 @@
+// Runs a resolved pipeline: configure every stage, run the nodes (loops
+// iterate up to their budget), finish, then publish outputs atomically.
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+
+#include "pipeline_model.hpp"
+#include "run_summary.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The output folder as the run sees it: files go to a hidden staging folder
+// and move into place only on success, so a failed run leaves nothing behind.
+class OutputStaging {
+ public:
+  explicit OutputStaging(const fs::path& out_dir) : out_(out_dir) {
+    if (out_.empty()) return;
+    std::error_code ec;
+    created_out_ = !fs::exists(out_, ec);
+    fs::create_directories(out_, ec);
+    if (ec) throw InputError("cannot create the output folder " + out_.string() + ": " + ec.message());
+    staging_ = out_ / (".touchcloud-staging-" + std::to_string(::getpid()));
+    fs::remove_all(staging_, ec);
+    fs::create_directories(staging_, ec);
+    if (ec) throw InputError("cannot write in the output folder " + out_.string() + ": " + ec.message());
+  }
+  ~OutputStaging() {
+    std::error_code ec;
+    if (!staging_.empty()) fs::remove_all(staging_, ec);
+    if (!committed_ && created_out_ && fs::is_empty(out_, ec)) fs::remove(out_, ec);
+  }
+  const fs::path& dir() const { return staging_; }
+
+  void commit(const std::vector<std::string>& files) {
+    for (const auto& f : files) {
+      const fs::path target = out_ / f;
+      fs::create_directories(target.parent_path());
+      fs::rename(staging_ / f, target);
+    }
+    committed_ = true;
+  }
+
+ private:
+  fs::path out_, staging_;
+  bool created_out_ = false, committed_ = false;
+};
+
+class Runner {
+ public:
+  Runner(ResolvedPipeline& p, const RunOptions& o) : pipeline_(p), options_(o) {}
+
+  RunResult run() {
+    const auto t0 = Clock::now();
+    OutputStaging staging(options_.out_dir);
+    RunRecord& record = pipeline_.record;
+    record = RunRecord{};
+    record.staging_dir = staging.dir();
+    record.quiet = options_.quiet;
+    for (auto* s : pipeline_.stages) {
+      s->context = std::make_unique<RunContext>(s->id, options_.seed, record);
+      s->timing = {s->id, s->plugin->name()};
+    }
+    for (auto* s : pipeline_.stages) timed(*s, "configure", s->timing.configure_s, [&] { s->stage->configure(*s->context); });
+    run_nodes(pipeline_.nodes);
+    for (auto* s : pipeline_.stages) timed(*s, "finish", s->timing.finish_s, [&] { s->stage->finish(*s->context); });
+
+    RunResult result;
+    result.record = record;
+    for (auto* s : pipeline_.stages) result.timings.push_back(s->timing);
+    for (auto* l : pipeline_.loops) result.loop_iterations.emplace_back(l->id, l->iterations_run);
+    result.wall_time_s = seconds_since(t0);
+    if (!options_.out_dir.empty()) {
+      auto files = record.outputs;
+      std::ofstream(staging.dir() / "summary.json") << make_summary(pipeline_, result, options_).dump(2) << "\n";
+      files.push_back("summary.json");
+      staging.commit(files);
+    }
+    return result;
+  }
+
+ private:
+  void run_nodes(std::vector<ResolvedNode>& nodes) {
+    for (auto& n : nodes) {
+      if (n.stage) run_stage(*n.stage);
+      else run_loop(*n.loop);
+    }
+  }
+
+  void run_loop(ResolvedLoop& loop) {
+    loop.iterations_run = 0;
+    auto& previous = previous_[&loop];
+    previous.clear();
+    for (std::int64_t i = 0; i < loop.max_iterations; ++i) {
+      if (i > 0) {
+        previous.clear();
+        for (auto* s : loop.stages)
+          for (const auto& out : s->ports->outputs())
+            if (auto it = values_.find(s->id + "." + out.name); it != values_.end()) previous[it->first] = it->second;
+      }
+      for (auto* s : loop.stages) s->context->set_iteration(static_cast<int>(i));
+      run_nodes(loop.body);
+      ++loop.iterations_run;
+      if (loop.until_key && std::any_cast<bool>(values_.at(*loop.until_key))) break;
+    }
+  }
+
+  void run_stage(ResolvedStage& s) {
+    std::map<std::string, std::any> inputs;
+    for (const auto& in : s.inputs) {
+      const auto& source = in.previous_of ? previous_[in.previous_of] : values_;
+      if (auto it = source.find(in.key); it != source.end()) inputs[in.port] = it->second;
+    }
+    StageIO io(*s.ports, std::move(inputs));
+    timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
+    ++s.timing.calls;
+    for (auto& [port, value] : io.outputs()) values_[s.id + "." + port] = std::move(value);
+  }
+
+  // Times a hook and puts the stage's name on anything it throws.
+  template <class F>
+  void timed(ResolvedStage& s, const char* hook, double& total, F&& f) {
+    const auto t0 = Clock::now();
+    const std::string who = "stage '" + s.id + "' (plugin " + s.plugin->name() + ")";
+    const std::string when = s.context->iteration() >= 0
+                                 ? " in iteration " + std::to_string(s.context->iteration()) : std::string();
+    try {
+      f();
+    } catch (const ParameterError& e) {
+      auto it = s.param_where.find(e.parameter());
+      throw InputError(who + ", parameter '" + e.parameter() + "': " + e.detail(),
+                       it != s.param_where.end() ? it->second : s.where);
+    } catch (const InputError& e) {
+      throw InputError(who + when + ": " + e.what(), s.where);
+    } catch (const std::exception& e) {
+      throw RunError(who + " failed in " + hook + when + ": " + e.what());
+    } catch (...) {
+      throw RunError(who + " failed in " + hook + when + " with an unknown exception");
+    }
+    total += seconds_since(t0);
+  }
+
+  ResolvedPipeline& pipeline_;
+  const RunOptions& options_;
+  std::unordered_map<std::string, std::any> values_;
+  std::map<const ResolvedLoop*, std::unordered_map<std::string, std::any>> previous_;
+};
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set '" + text + "' must be STAGE.PARAM=VALUE");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+Pipeline::Pipeline(std::unique_ptr<ResolvedPipeline> impl) : impl_(std::move(impl)) {}
+Pipeline::Pipeline(Pipeline&&) noexcept = default;
+Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
+Pipeline::~Pipeline() = default;
+
+Pipeline Pipeline::load(const fs::path& file, const std::vector<Override>& overrides, PluginRegistry& registry) {
+  std::vector<Diagnostic> diagnostics;
+  PipelineDoc doc = parse_pipeline(file, diagnostics);
+  if (!diagnostics.empty()) throw InputError(diagnostics);
+  return Pipeline(resolve_pipeline(std::move(doc), overrides, registry));
+}
+
+const std::string& Pipeline::name() const { return impl_->name; }
+const fs::path& Pipeline::file() const { return impl_->file; }
+
+std::map<std::string, std::map<std::string, ParamValue>> Pipeline::parameters() const {
+  std::map<std::string, std::map<std::string, ParamValue>> out;
+  for (const auto* s : impl_->stages) out[s->id] = s->values;
+  for (const auto* l : impl_->loops) out[l->id]["max_iterations"] = static_cast<std::int64_t>(l->max_iterations);
+  return out;
+}
+
+RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options) {
+  return Runner(pipeline.resolved(), options).run();
+}
+
+}  // namespace touchcloud

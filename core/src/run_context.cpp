@@ -1,0 +1,64 @@
+#include "touchcloud/run_context.hpp"
+
+#include <cmath>
+#include <functional>
+#include <iostream>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud {
+
+namespace {
+// FNV-1a: a stable hash (std::hash may differ between library versions, and
+// seeds must reproduce runs).
+std::uint64_t stable_hash(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+}  // namespace
+
+RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record)
+    : stage_id_(std::move(stage_id)), seed_(run_seed), record_(record) {
+  std::seed_seq seq{static_cast<std::uint32_t>(run_seed), static_cast<std::uint32_t>(run_seed >> 32),
+                    static_cast<std::uint32_t>(stable_hash(stage_id_)),
+                    static_cast<std::uint32_t>(stable_hash(stage_id_) >> 32)};
+  rng_.seed(seq);
+}
+
+void RunContext::metric(const std::string& name, double value, const std::string& unit) {
+  if (!std::isfinite(value))
+    throw RunError("metric '" + name + "' is not finite (" + std::to_string(value) + ")");
+  auto& series = record_.metrics[stage_id_ + "." + name];
+  series.unit = unit;
+  series.values.push_back(value);
+}
+
+void RunContext::note(const std::string& name, const std::string& text) {
+  record_.notes[stage_id_ + "." + name] = text;
+}
+
+std::filesystem::path RunContext::output_path(const std::string& file_name) {
+  if (record_.staging_dir.empty())
+    throw InputError("stage '" + stage_id_ + "' writes '" + file_name +
+                     "' but this run has no output folder (use --out DIR)");
+  const std::filesystem::path rel(file_name);
+  if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0)
+    throw ParameterError("path", "output file '" + file_name + "' must stay inside the output folder");
+  const auto path = record_.staging_dir / rel.lexically_normal();
+  std::filesystem::create_directories(path.parent_path());
+  const std::string name = rel.lexically_normal().string();
+  bool known = false;
+  for (const auto& o : record_.outputs) known = known || o == name;
+  if (!known) record_.outputs.push_back(name);
+  return path;
+}
+
+void RunContext::log(const std::string& message) const {
+  if (!record_.quiet) std::clog << "[" << stage_id_ << "] " << message << "\n";
+}
+
+}  // namespace touchcloud

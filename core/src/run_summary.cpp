@@ -1,0 +1,69 @@
+#include "run_summary.hpp"
+
+#include <boost/version.hpp>
+#include <Eigen/Core>
+#include <pcl/pcl_config.h>
+
+namespace touchcloud {
+
+namespace {
+nlohmann::json to_json(const ParamValue& v) {
+  return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
+}
+}  // namespace
+
+nlohmann::json library_versions() {
+  return {
+      {"touchcloud", kVersion},
+      {"plugin_abi", kPluginAbiVersion},
+      {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                    std::to_string(EIGEN_MINOR_VERSION)},
+      {"pcl", PCL_VERSION_PRETTY},
+      {"boost", std::to_string(BOOST_VERSION / 100000) + "." + std::to_string(BOOST_VERSION / 100 % 1000) + "." +
+                    std::to_string(BOOST_VERSION % 100)},
+      {"compiler", __VERSION__},
+  };
+}
+
+nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& result, const RunOptions& options) {
+  nlohmann::json j;
+  j["pipeline"] = {{"name", pipeline.name}, {"file", pipeline.file.string()}};
+  j["seed"] = options.seed;
+  j["versions"] = library_versions();
+  j["wall_time_s"] = result.wall_time_s;
+
+  nlohmann::json stages = nlohmann::json::array();
+  for (const auto* s : pipeline.stages) {
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& [name, value] : s->values) params[name] = to_json(value);
+    nlohmann::json stage = {{"id", s->id},
+                            {"plugin", s->plugin->name()},
+                            {"plugin_built_for", s->plugin->toolkit_version()},
+                            {"library", s->plugin->library().string()},
+                            {"params", params}};
+    for (const auto& t : result.timings)
+      if (t.id == s->id)
+        stage["time_s"] = {{"configure", t.configure_s}, {"process", t.process_s},
+                           {"finish", t.finish_s}, {"calls", t.calls}};
+    stages.push_back(stage);
+  }
+  j["stages"] = stages;
+
+  nlohmann::json loops = nlohmann::json::object();
+  for (const auto& [id, n] : result.loop_iterations) loops[id] = {{"iterations", n}};
+  for (const auto* l : pipeline.loops) loops[l->id]["max_iterations"] = l->max_iterations;
+  j["loops"] = loops;
+
+  nlohmann::json metrics = nlohmann::json::object();
+  for (const auto& [name, series] : result.record.metrics) {
+    nlohmann::json m = {{"value", series.values.back()}, {"unit", series.unit}};
+    if (series.values.size() > 1) m["series"] = series.values;
+    metrics[name] = m;
+  }
+  j["metrics"] = metrics;
+  j["notes"] = result.record.notes;
+  j["outputs"] = result.record.outputs;
+  return j;
+}
+
+}  // namespace touchcloud

@@ -1,0 +1,14 @@
+// summary.json: the machine-readable record of a run.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline_model.hpp"
+
+namespace touchcloud {
+
+nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& result, const RunOptions& options);
+// Library versions the toolkit was built with ("eigen" -> "3.4.0", ...).
+nlohmann::json library_versions();
+
+}  // namespace touchcloud

@@ -1,0 +1,47 @@
+// cloud_writer: writes a point cloud into the run's output folder.
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/types/point_cloud.hpp"
+
+namespace touchcloud {
+
+class CloudWriter final : public Stage {
+  std::string path_;
+  bool binary_ = true;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("path", path_, std::string("cloud.pcd"))
+        .output_file()
+        .doc("file in the output folder, .pcd or .ply; '{iteration}' becomes the loop iteration");
+    p.add("binary", binary_, true).doc("binary encoding (false: ASCII, larger but readable)");
+  }
+  void declare_ports(PortSet& ports) override { ports.input<CloudConstPtr>("cloud", "points to write, mm"); }
+
+  void on_check(RunContext&) override {
+    const std::string ext = std::filesystem::path(path_).extension().string();
+    if (ext != ".pcd" && ext != ".ply")
+      throw ParameterError("path", "'" + path_ + "': unsupported extension '" + ext + "' (use .pcd or .ply)");
+  }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto& cloud = io.input<CloudConstPtr>("cloud");
+    if (!cloud || cloud->empty()) throw RunError("the cloud to write is empty");
+    std::string name = path_;
+    if (auto at = name.find("{iteration}"); at != std::string::npos)
+      name.replace(at, 11, std::to_string(std::max(ctx.iteration(), 0)));
+    const auto file = ctx.output_path(name);
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+    const bool ply = file.extension() == ".ply";
+    const int status = ply ? pcl::io::savePLYFile(file.string(), *cloud, binary_)
+                           : pcl::io::savePCDFile(file.string(), *cloud, binary_);
+    if (status < 0) throw RunError("could not write " + file.string());
+    ctx.log("wrote " + std::to_string(cloud->size()) + " points to " + name);
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::CloudWriter, "cloud_writer", "Writes a point cloud to a PCD or PLY file in the output folder")

@@ -1,0 +1,40 @@
+// Test plugin: counts calls, reads an optional number (for @previous wiring)
+// and says when the count reaches `stop_at`.
+#include "touchcloud/plugin.hpp"
+
+namespace {
+class CounterStage final : public touchcloud::Stage {
+  int stop_at_ = 0;
+  double step_ = 1.0;
+  std::vector<double> offsets_;
+  bool flag_ = false;
+  std::string label_;
+  void declare_parameters(touchcloud::ParameterSet& p) override {
+    p.add("stop_at", stop_at_, 0).at_least(0).unit("calls").doc("'done' turns true at this count (0: never)");
+    p.add("step", step_, 1.0).range(-100.0, 100.0).doc("added to the previous value each call");
+    p.add("offsets", offsets_, std::vector<double>{0, 0}).size(2).doc("two numbers");
+    p.add("flag", flag_, false).doc("a switch");
+    p.add("label", label_, std::string("a")).choices({"a", "b"}).doc("a choice");
+  }
+  void declare_ports(touchcloud::PortSet& ports) override {
+    ports.optional_input<double>("previous", "the value of an earlier call");
+    ports.output<double>("value", "previous + step");
+    ports.output<bool>("done", "count reached stop_at");
+  }
+  void on_process(touchcloud::StageIO& io, touchcloud::RunContext& ctx) override {
+    const double* prev = io.optional_input<double>("previous");
+    const double value = (prev ? *prev : 0.0) + step_;
+    ++calls_;
+    ctx.metric("value", value);
+    io.output("value", value);
+    io.output("done", stop_at_ > 0 && calls_ >= stop_at_);
+  }
+  void on_finish(touchcloud::RunContext& ctx) override {
+    ctx.metric("calls", calls_, "calls");
+    ctx.metric("random_draw", static_cast<double>(ctx.rng()() % 1000000));
+  }
+  int calls_ = 0;
+};
+}  // namespace
+
+TOUCHCLOUD_PLUGIN(CounterStage, "test_counter", "Test only: counts its calls")

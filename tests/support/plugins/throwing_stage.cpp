@@ -1,0 +1,19 @@
+// Test plugin: throws from process on the iteration named by `fail_at`.
+#include "touchcloud/plugin.hpp"
+
+namespace {
+class ThrowingStage final : public touchcloud::Stage {
+  int fail_at_ = 0;
+  void declare_parameters(touchcloud::ParameterSet& p) override {
+    p.add("fail_at", fail_at_, 0).at_least(0).doc("call index that throws");
+  }
+  void declare_ports(touchcloud::PortSet& ports) override { ports.output<double>("value", "the call index"); }
+  void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
+    if (calls_ == fail_at_) throw std::runtime_error("the gel tore (simulated failure)");
+    io.output("value", static_cast<double>(calls_++));
+  }
+  int calls_ = 0;
+};
+}  // namespace
+
+TOUCHCLOUD_PLUGIN(ThrowingStage, "test_throwing", "Test only: throws on a chosen call")

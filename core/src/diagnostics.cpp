@@ -14,9 +14,14 @@ std::string Diagnostic::str() const {
 }
 
 namespace {
+// what(): "where: message" lines, without the "error:" of the CLI format, so
+// a message can be wrapped and rethrown.
 std::string join_diagnostics(const std::vector<Diagnostic>& diagnostics) {
   std::string text;
-  for (const auto& d : diagnostics) text += (text.empty() ? "" : "\n") + d.str();
+  for (const auto& d : diagnostics) {
+    const std::string at = d.where.str();
+    text += (text.empty() ? "" : "\n") + (at.empty() ? "" : at + ": ") + d.message;
+  }
   return text;
 }
 }  // namespace

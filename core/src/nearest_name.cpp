@@ -31,6 +31,13 @@ std::string nearest_name(const std::string& name, const std::vector<std::string>
       best = c;
     }
   }
+  if (!best.empty() || name.size() < 3) return best;
+  // A shortened name ("leaf" for "leaf_size_mm"): suggest the one it begins.
+  for (const auto& c : candidates)
+    if (c.rfind(name, 0) == 0) {
+      if (!best.empty()) return {};  // ambiguous
+      best = c;
+    }
   return best;
 }
 

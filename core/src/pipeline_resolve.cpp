@@ -174,9 +174,10 @@ class Resolver {
         error(p.where, who + ", parameter '" + p.name + "': " + e.detail());
       }
     }
-    // Defaults that name input files must exist too.
+    // An input file has no usable default: the pipeline must name one.
     for (const auto& spec : s->params->specs())
-      if (spec.path_role == PathRole::InputFile && !s->param_where.count(spec.name))
+      if (spec.path_role == PathRole::InputFile &&
+          std::none_of(n.params.begin(), n.params.end(), [&](const ParamDoc& p) { return p.name == spec.name; }))
         error(n.where, who + ": parameter '" + spec.name + "' names an input file and must be set");
     return s;
   }

@@ -1,10 +1,5 @@
 // cloud_reader: reads a PCD or PLY point cloud (mm) and hands it on.
-#include <cmath>
-
-#include <pcl/console/print.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
-
+#include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 
@@ -25,31 +20,15 @@ class CloudReader final : public Stage {
 
   // Reading at check time lets `validate` report empty or corrupt files.
   void on_check(RunContext&) override {
-    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our errors say it better
-    std::string ext = std::filesystem::path(path_).extension().string();
-    for (auto& c : ext) c = static_cast<char>(std::tolower(c));
-    auto cloud = std::make_shared<PointCloud>();
-    int status = 0;
-    if (ext == ".pcd") status = pcl::io::loadPCDFile(path_, *cloud);
-    else if (ext == ".ply") status = pcl::io::loadPLYFile(path_, *cloud);
-    else throw ParameterError("path", path_ + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
-    if (status < 0) throw ParameterError("path", path_ + " is not a readable " + ext.substr(1) + " point cloud (corrupt or truncated)");
-    if (cloud->empty()) throw ParameterError("path", path_ + " contains no points");
-
-    PointCloud finite;
-    finite.reserve(cloud->size());
-    for (const auto& q : cloud->points)
-      if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) finite.push_back(q);
-    dropped_ = cloud->size() - finite.size();
-    if (dropped_ > 0 && on_nonfinite_ == "error")
-      throw ParameterError("path", path_ + " has " + std::to_string(dropped_) +
-                                       " points with non-finite coordinates (set on_nonfinite: drop to skip them)");
-    if (finite.empty()) throw ParameterError("path", path_ + " has no finite points");
-    if (dropped_ > 0) *cloud = std::move(finite);
-    cloud->width = static_cast<std::uint32_t>(cloud->size());
-    cloud->height = 1;
-    cloud->is_dense = true;
-    cloud_ = cloud;
+    try {
+      CloudFile file = read_cloud_file(path_, on_nonfinite_ == "drop" ? NonFinitePoints::Drop : NonFinitePoints::Refuse);
+      dropped_ = file.dropped_nonfinite;
+      cloud_ = file.cloud;
+    } catch (const InputError& e) {
+      const std::string hint = on_nonfinite_ == "error" && std::string(e.what()).find("non-finite") != std::string::npos
+                                   ? " (set on_nonfinite: drop to skip them)" : "";
+      throw ParameterError("path", e.what() + hint);
+    }
   }
 
   void on_configure(RunContext& ctx) override {

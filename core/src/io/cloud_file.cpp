@@ -1,0 +1,79 @@
+#include "touchcloud/io/cloud_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+#include "touchcloud/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud {
+
+namespace {
+
+// PCL 1.13's PCDReader::read dereferences an unparsed header when the file
+// has none (a crash, not an error), so the header is checked on its own first.
+void check_pcd_header(const fs::path& file) {
+  pcl::PCLPointCloud2 header;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0, data_type = 0;
+  unsigned int data_index = 0;
+  if (pcl::PCDReader().readHeader(file.string(), header, origin, orientation, version, data_type, data_index) < 0)
+    throw InputError(file.string() + " is not a readable pcd point cloud (no valid PCD header)");
+  if (header.fields.empty())
+    throw InputError(file.string() + " is not a readable pcd point cloud (no valid PCD header: no FIELDS)");
+  for (const char* axis : {"x", "y", "z"})
+    if (std::none_of(header.fields.begin(), header.fields.end(), [&](const auto& f) { return f.name == axis; }))
+      throw InputError(file.string() + " has no '" + axis + "' field; a point cloud needs x, y and z");
+}
+
+}  // namespace
+
+CloudFile read_cloud_file(const fs::path& file, NonFinitePoints nonfinite) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our messages replace PCL's console noise
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) throw InputError(file.string() + " does not exist or is not a file");
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+
+  auto cloud = std::make_shared<PointCloud>();
+  int status = 0;
+  if (ext == ".pcd") {
+    if (fs::file_size(file, ec) == 0) throw InputError(file.string() + " is empty (0 bytes)");
+    check_pcd_header(file);
+    status = pcl::io::loadPCDFile(file.string(), *cloud);
+  } else if (ext == ".ply") {
+    if (fs::file_size(file, ec) == 0) throw InputError(file.string() + " is empty (0 bytes)");
+    status = pcl::io::loadPLYFile(file.string(), *cloud);
+  } else {
+    throw InputError(file.string() + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
+  }
+  if (status < 0)
+    throw InputError(file.string() + " is not a readable " + ext.substr(1) + " point cloud (corrupt or truncated)");
+  if (cloud->empty()) throw InputError(file.string() + " contains no points");
+
+  CloudFile out;
+  const auto finite = [](const pcl::PointXYZ& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  out.dropped_nonfinite = static_cast<std::size_t>(std::count_if(cloud->begin(), cloud->end(),
+                                                                 [&](const auto& p) { return !finite(p); }));
+  if (out.dropped_nonfinite > 0 && nonfinite == NonFinitePoints::Refuse)
+    throw InputError(file.string() + " has " + std::to_string(out.dropped_nonfinite) +
+                     " points with non-finite coordinates");
+  if (out.dropped_nonfinite == cloud->size()) throw InputError(file.string() + " has no finite points");
+  if (out.dropped_nonfinite > 0)
+    cloud->erase(std::remove_if(cloud->begin(), cloud->end(), [&](const auto& p) { return !finite(p); }), cloud->end());
+  cloud->width = static_cast<std::uint32_t>(cloud->size());
+  cloud->height = 1;
+  cloud->is_dense = true;
+  out.cloud = cloud;
+  return out;
+}
+
+}  // namespace touchcloud

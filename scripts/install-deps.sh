@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages touchcloud builds and tests with. Does
+# nothing when they are all present; needs root (or sudo) otherwise.
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ pkg-config python3
+  libeigen3-dev libpcl-dev libopencv-dev libboost-dev libboost-filesystem-dev
+  libyaml-cpp-dev libceres-dev libflann-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "installing: ${missing[*]}" >&2
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,155 @@
+// The CLI contract: exit statuses, error lines, --set, --seed, --out,
+// and `plugins` output, exercised through the real binary.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+
+using touchcloud::test::read_file;
+using touchcloud::test::run_cli;
+using touchcloud::test::write_file;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kDemo = (touchcloud::test::source_dir() / "pipelines/downsample_cloud.yaml").string();
+const std::string kTestPlugins = "TOUCHCLOUD_PLUGIN_PATH=" TOUCHCLOUD_TEST_PLUGIN_DIR;
+
+bool has_line_starting(const std::string& text, const std::string& prefix) {
+  std::size_t at = 0;
+  while (at < text.size()) {
+    if (text.compare(at, prefix.size(), prefix) == 0) return true;
+    at = text.find('\n', at);
+    if (at == std::string::npos) break;
+    ++at;
+  }
+  return false;
+}
+}  // namespace
+
+TEST(Cli, RunWritesOutputsAndSummary) {
+  touchcloud::test::TempDir dir;
+  const auto r = run_cli({"run", kDemo, "--out", (dir / "out").string(), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out/gel_dome_thinned.ply"));
+  const auto summary = nlohmann::json::parse(read_file(dir / "out/summary.json"));
+  EXPECT_EQ(summary["pipeline"]["name"], "downsample_cloud");
+  EXPECT_GT(summary["metrics"]["thin.points_out"]["value"].get<double>(), 0);
+  EXPECT_LT(summary["metrics"]["thin.points_out"]["value"].get<double>(),
+            summary["metrics"]["thin.points_in"]["value"].get<double>());
+  EXPECT_NE(r.out.find("thin.points_out"), std::string::npos) << r.out;
+}
+
+TEST(Cli, SetOverridesAndSeedReproducesBitForBit) {
+  touchcloud::test::TempDir dir;
+  const std::vector<std::string> random = {"--set", "thin.method=random", "--set", "thin.keep_ratio=0.3", "--quiet"};
+  auto args = [&](const std::string& out, const std::string& seed) {
+    std::vector<std::string> a = {"run", kDemo, "--out", (dir / out).string(), "--seed", seed};
+    a.insert(a.end(), random.begin(), random.end());
+    return a;
+  };
+  ASSERT_EQ(run_cli(args("a", "5")).exit_code, 0);
+  ASSERT_EQ(run_cli(args("b", "5")).exit_code, 0);
+  ASSERT_EQ(run_cli(args("c", "6")).exit_code, 0);
+  const std::string a = read_file(dir / "a/gel_dome_thinned.ply");
+  EXPECT_EQ(a, read_file(dir / "b/gel_dome_thinned.ply"));
+  EXPECT_NE(a, read_file(dir / "c/gel_dome_thinned.ply"));
+  const auto summary = nlohmann::json::parse(read_file(dir / "a/summary.json"));
+  EXPECT_EQ(summary["seed"], 5);
+  EXPECT_EQ(summary["stages"][1]["params"]["keep_ratio"], 0.3);
+  EXPECT_EQ(summary["metrics"]["thin.points_out"]["value"], 600);  // 30% of 2000
+}
+
+TEST(Cli, ValidateAcceptsAGoodPipeline) {
+  const auto r = run_cli({"validate", kDemo});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("ok"), std::string::npos);
+}
+
+TEST(Cli, BadPipelinesExitTwoWithLocatedErrorsAndWriteNothing) {
+  touchcloud::test::TempDir dir;
+  const fs::path bad = dir / "bad.yaml";
+  write_file(bad, "stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: missing.pcd}\n");
+  for (const std::string verb : {"validate", "run"}) {
+    std::vector<std::string> args = {verb, bad.string()};
+    if (verb == "run") args.insert(args.end(), {"--out", (dir / "out").string()});
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << verb;
+    EXPECT_TRUE(has_line_starting(r.err, bad.string() + ":4:20: error: ")) << r.err;
+    EXPECT_TRUE(has_line_starting(r.err, "touchcloud: error: ")) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(Cli, SetErrorsNameTheKey) {
+  const auto r = run_cli({"validate", kDemo, "--set", "thin.leaf_size_mm=-3"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has_line_starting(r.err, "touchcloud: error: --set thin.leaf_size_mm=-3: ")) << r.err;
+  EXPECT_NE(r.err.find("must be > 0 (mm)"), std::string::npos) << r.err;
+  const auto r2 = run_cli({"validate", kDemo, "--set", "nonsense"});
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_TRUE(has_line_starting(r2.err, "touchcloud: error: --set 'nonsense' must be STAGE.PARAM=VALUE")) << r2.err;
+}
+
+TEST(Cli, UsageErrorsAndMissingFilesExitTwo) {
+  auto r = run_cli({"run"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has_line_starting(r.err, "touchcloud: error: ")) << r.err;
+  r = run_cli({"frobnicate"});
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli({"validate", "/no/such/pipeline.yaml"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has_line_starting(r.err, "touchcloud: error: /no/such/pipeline.yaml: cannot read the pipeline file"))
+      << r.err;
+}
+
+TEST(Cli, AStageThatThrowsExitsOneNamingTheStage) {
+  touchcloud::test::TempDir dir;
+  write_file(dir / "p.yaml", "stages:\n  - id: tear\n    plugin: test_throwing\n");
+  const auto r = run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / "out").string()}, kTestPlugins);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(has_line_starting(r.err, "touchcloud: error: stage 'tear' (plugin test_throwing) failed in process"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(Cli, PluginsListsEveryPluginWithItsParameters) {
+  const auto r = run_cli({"plugins"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* text : {"cloud_reader - ", "downsample - ", "cloud_writer - ", "leaf_size_mm", "search path:"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
+}
+
+TEST(Cli, PluginsNameDescribesOneInFullAndAsJson) {
+  auto r = run_cli({"plugins", "downsample"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("inputs:"), std::string::npos);
+  EXPECT_NE(r.out.find("> 0"), std::string::npos) << r.out;
+  r = run_cli({"plugins", "downsample", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["name"], "downsample");
+  bool found = false;
+  for (const auto& p : j["parameters"])
+    if (p["name"] == "leaf_size_mm") {
+      found = true;
+      EXPECT_EQ(p["unit"], "mm");
+      EXPECT_EQ(p["default"], 1.0);
+      EXPECT_EQ(p["min"]["value"], 0.0);
+      EXPECT_TRUE(p["min"]["exclusive"].get<bool>());
+    }
+  EXPECT_TRUE(found);
+  r = run_cli({"plugins", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GE(nlohmann::json::parse(r.out).size(), 3u);
+}
+
+TEST(Cli, PluginsReportsLoadFailuresAndAbiMismatch) {
+  auto r = run_cli({"plugins", "test_old_abi"}, kTestPlugins);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("ABI version 0"), std::string::npos) << r.err;
+  r = run_cli({"plugins", "downsampel"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("did you mean 'downsample'?"), std::string::npos) << r.err;
+}

@@ -1,0 +1,120 @@
+// Running pipelines: order, loops, @previous, seeds, failures and outputs.
+#include <nlohmann/json.hpp>
+
+#include "pipeline_fixture.hpp"
+
+using namespace touchcloud;
+namespace fs = std::filesystem;
+
+class PipelineRunner : public touchcloud::test::PipelineFixture {
+ protected:
+  RunResult run(const std::string& yaml, std::uint64_t seed = 0, const fs::path& out = {}) {
+    Pipeline p = load(yaml);
+    RunOptions o;
+    o.seed = seed;
+    o.out_dir = out;
+    o.quiet = true;
+    return run_pipeline(p, o);
+  }
+  static const std::vector<double>& series(const RunResult& r, const std::string& key) {
+    return r.record.metrics.at(key).values;
+  }
+};
+
+TEST_F(PipelineRunner, LoopRunsItsBudgetAndFeedsThePreviousIteration) {
+  const RunResult r = run(
+      "stages:\n  - id: explore\n    loop:\n      max_iterations: 5\n      stages:\n"
+      "        - id: c\n          plugin: test_counter\n          params: {step: 2}\n"
+      "          inputs: {previous: c.value@previous}\n");
+  EXPECT_EQ(series(r, "c.value"), (std::vector<double>{2, 4, 6, 8, 10}));
+  EXPECT_EQ(series(r, "c.calls").at(0), 5);
+  ASSERT_EQ(r.loop_iterations.size(), 1u);
+  EXPECT_EQ(r.loop_iterations[0], std::make_pair(std::string("explore"), 5));
+}
+
+TEST_F(PipelineRunner, UntilStopsTheLoopEarly) {
+  const RunResult r = run(
+      "stages:\n  - id: explore\n    loop:\n      max_iterations: 30\n      until: c.done\n      stages:\n"
+      "        - id: c\n          plugin: test_counter\n          params: {stop_at: 3}\n");
+  EXPECT_EQ(r.loop_iterations[0].second, 3);
+  EXPECT_EQ(series(r, "c.value").size(), 3u);
+}
+
+TEST_F(PipelineRunner, NestedLoopsRestartTheirPreviousValues) {
+  // The inner loop's first iteration has no previous value each time it
+  // starts, so its count restarts at `step` in every outer iteration.
+  const RunResult r = run(
+      "stages:\n  - id: touches\n    loop:\n      max_iterations: 2\n      stages:\n"
+      "        - id: frames\n          loop:\n            max_iterations: 3\n            stages:\n"
+      "              - id: f\n                plugin: test_counter\n"
+      "                inputs: {previous: f.value@previous}\n");
+  EXPECT_EQ(series(r, "f.value"), (std::vector<double>{1, 2, 3, 1, 2, 3}));
+}
+
+TEST_F(PipelineRunner, StagesRunInDependencyOrderWhateverTheFileOrder) {
+  const RunResult r = run(
+      "stages:\n"
+      "  - id: second\n    plugin: test_counter\n    params: {step: 10}\n    inputs: {previous: first.value}\n"
+      "  - id: first\n    plugin: test_counter\n    params: {step: 1}\n");
+  EXPECT_EQ(series(r, "second.value").at(0), 11);
+  EXPECT_EQ(r.timings.at(0).id, "first");
+}
+
+TEST_F(PipelineRunner, SeedsReproduceAndDifferentSeedsDiffer) {
+  const std::string yaml = "stages:\n  - id: a\n    plugin: test_counter\n  - id: b\n    plugin: test_counter\n";
+  const double a1 = series(run(yaml, 7), "a.random_draw")[0];
+  const double a2 = series(run(yaml, 7), "a.random_draw")[0];
+  const double b1 = series(run(yaml, 7), "b.random_draw")[0];
+  const double a3 = series(run(yaml, 8), "a.random_draw")[0];
+  EXPECT_EQ(a1, a2);
+  EXPECT_NE(a1, b1) << "stages draw from their own streams";
+  EXPECT_NE(a1, a3);
+}
+
+TEST_F(PipelineRunner, AThrowingStageEndsTheRunNamingStageAndIteration) {
+  const fs::path out = dir_ / "out";
+  try {
+    run("stages:\n  - id: l\n    loop:\n      max_iterations: 5\n      stages:\n"
+        "        - id: bad\n          plugin: test_throwing\n          params: {fail_at: 2}\n"
+        "        - id: c\n          plugin: test_counter\n",
+        0, out);
+    FAIL() << "no error";
+  } catch (const RunError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("stage 'bad' (plugin test_throwing) failed in process in iteration 2: the gel tore"),
+              std::string::npos) << msg;
+  }
+  EXPECT_FALSE(fs::exists(out)) << "a failed run leaves no output folder behind";
+}
+
+TEST_F(PipelineRunner, FailedRunKeepsAnExistingFolderUntouched) {
+  const fs::path out = dir_ / "out";
+  touchcloud::test::write_file(out / "summary.json", "old");
+  EXPECT_THROW(run("stages:\n  - id: bad\n    plugin: test_throwing\n", 0, out), RunError);
+  EXPECT_EQ(touchcloud::test::read_file(out / "summary.json"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1);
+}
+
+TEST_F(PipelineRunner, SummaryRecordsParametersSeedVersionsTimesAndMetrics) {
+  const fs::path out = dir_ / "out";
+  run("pipeline: counting\nstages:\n  - id: l\n    loop:\n      max_iterations: 3\n      stages:\n"
+      "        - id: c\n          plugin: test_counter\n          params: {step: 0.5, offsets: [1, 2]}\n"
+      "          inputs: {previous: c.value@previous}\n",
+      42, out);
+  const auto j = nlohmann::json::parse(touchcloud::test::read_file(out / "summary.json"));
+  EXPECT_EQ(j["pipeline"]["name"], "counting");
+  EXPECT_EQ(j["seed"], 42);
+  EXPECT_EQ(j["versions"]["touchcloud"], kVersion);
+  EXPECT_EQ(j["versions"]["plugin_abi"], kPluginAbiVersion);
+  const auto& stage = j["stages"][0];
+  EXPECT_EQ(stage["id"], "c");
+  EXPECT_EQ(stage["params"]["step"], 0.5);
+  EXPECT_EQ(stage["params"]["offsets"], nlohmann::json::array({1.0, 2.0}));
+  EXPECT_EQ(stage["params"]["label"], "a") << "defaults are recorded too";
+  EXPECT_EQ(stage["time_s"]["calls"], 3);
+  EXPECT_GE(stage["time_s"]["process"].get<double>(), 0.0);
+  EXPECT_EQ(j["loops"]["l"]["iterations"], 3);
+  EXPECT_EQ(j["metrics"]["c.value"]["series"], nlohmann::json::array({0.5, 1.0, 1.5}));
+  EXPECT_EQ(j["metrics"]["c.value"]["value"], 1.5);
+  EXPECT_FALSE(fs::exists(out / (".touchcloud-staging-" + std::to_string(::getpid()))));
+}

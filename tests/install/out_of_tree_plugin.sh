@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the toolkit into a temporary prefix, builds examples/custom_plugin
+# against it with find_package(touchcloud), loads the plugin through
+# TOUCHCLOUD_PLUGIN_PATH and runs it in a pipeline with the installed CLI.
+# Usage: out_of_tree_plugin.sh SOURCE_DIR BUILD_DIR
+set -euo pipefail
+src=$1 build=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+cmake -S "$src/examples/custom_plugin" -B "$work/plugin" -G Ninja \
+      -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+cmake --build "$work/plugin" > "$work/build.log"
+test -f "$work/plugin/touchcloud_contact_disc.so"
+
+export TOUCHCLOUD_PLUGIN_PATH="$work/plugin"
+tc="$work/prefix/bin/touchcloud"
+"$tc" plugins contact_disc | grep -q "radius_mm"
+"$tc" run "$src/examples/custom_plugin/contact_disc.yaml" --out "$work/out" --quiet > "$work/run.log"
+grep -q '"disc.points_kept"' "$work/out/summary.json"
+kept=$(python3 -c "import json,sys; print(int(json.load(open(sys.argv[1]))['metrics']['disc.points_kept']['value']))" "$work/out/summary.json")
+# The dome's 2000 points are spread evenly by area over a 32.5 mm hemisphere.
+# A 10 mm disc around the axis is a cap of height h = 32.5 - sqrt(32.5^2 - 10^2)
+# = 1.576 mm, area 2 pi R h, which is h / R = 4.85 % of the hemisphere: ~97 points.
+if [ "$kept" -lt 90 ] || [ "$kept" -gt 105 ]; then
+  echo "contact_disc kept $kept points, expected about 97" >&2; exit 1
+fi
+# The installed CLI finds the installed built-in plugins (not the build tree's).
+"$tc" plugins --json | python3 -c "import json,sys; libs=[p['library'] for p in json.load(sys.stdin)]; assert all(l.startswith('$work/prefix') or l.startswith('$work/plugin') for l in libs), libs"
+echo "out-of-tree plugin: built, loaded and run; kept $kept points"

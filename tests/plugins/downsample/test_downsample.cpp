@@ -1,0 +1,66 @@
+// downsample: voxel centroids on a hand-checkable grid, exact random counts,
+// seeded reproducibility, and a refusal where PCL would silently do nothing.
+#include "cloud_files.hpp"
+#include "pipeline_fixture.hpp"
+
+using namespace touchcloud;
+
+class Downsample : public touchcloud::test::PipelineFixture {
+ protected:
+  PointCloud thin(const std::string& params, std::uint64_t seed = 0) {
+    Pipeline p = load("stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: in.pcd}\n"
+                      "  - id: thin\n    plugin: downsample\n    params: " + params +
+                      "\n    inputs: {cloud: read.cloud}\n"
+                      "  - id: write\n    plugin: cloud_writer\n    params: {path: out.pcd}\n"
+                      "    inputs: {cloud: thin.cloud}\n");
+    RunOptions o;
+    o.quiet = true;
+    o.seed = seed;
+    o.out_dir = dir_ / ("out" + std::to_string(runs_++));
+    run_pipeline(p, o);
+    return touchcloud::test::load_cloud(o.out_dir / "out.pcd");
+  }
+  int runs_ = 0;
+};
+
+TEST_F(Downsample, VoxelGridKeepsOneCentroidPerOccupiedVoxel) {
+  // 10 x 10 points 1 mm apart at 0..9 mm; 2 mm voxels pair them up: 5 x 5
+  // voxels, each the centroid of a 2 x 2 block (x.5 coordinates).
+  touchcloud::test::save_pcd(dir_ / "in.pcd", touchcloud::test::grid_cloud(10, 1.0));
+  const PointCloud out = thin("{method: voxel, leaf_size_mm: 2.0}");
+  ASSERT_EQ(out.size(), 25u);
+  for (const auto& p : out) {
+    EXPECT_NEAR(std::fmod(p.x, 2.0), 0.5, 1e-5);
+    EXPECT_NEAR(std::fmod(p.y, 2.0), 0.5, 1e-5);
+  }
+}
+
+TEST_F(Downsample, RandomKeepsTheRequestedShareReproducibly) {
+  touchcloud::test::save_pcd(dir_ / "in.pcd", touchcloud::test::grid_cloud(20, 1.0));
+  const PointCloud a = thin("{method: random, keep_ratio: 0.25}", 3);
+  const PointCloud b = thin("{method: random, keep_ratio: 0.25}", 3);
+  const PointCloud c = thin("{method: random, keep_ratio: 0.25}", 4);
+  ASSERT_EQ(a.size(), 100u);
+  ASSERT_EQ(b.size(), a.size());
+  bool same_ab = true, same_ac = true;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    same_ab = same_ab && a[i].x == b[i].x && a[i].y == b[i].y;
+    same_ac = same_ac && a[i].x == c[i].x && a[i].y == c[i].y;
+  }
+  EXPECT_TRUE(same_ab) << "same seed, same points";
+  EXPECT_FALSE(same_ac) << "another seed, other points";
+}
+
+TEST_F(Downsample, RefusesALeafTooSmallForPclToIndex) {
+  PointCloud far;
+  far.push_back(pcl::PointXYZ(0, 0, 0));
+  far.push_back(pcl::PointXYZ(1e4f, 1e4f, 1e4f));
+  touchcloud::test::save_pcd(dir_ / "in.pcd", far);
+  try {
+    thin("{method: voxel, leaf_size_mm: 0.01}");
+    FAIL() << "PCL would have returned the input unchanged";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("leaf_size_mm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than PCL's voxel grid can index"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,30 @@
+#include "cloud_files.hpp"
+
+#include <stdexcept>
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+namespace touchcloud::test {
+
+PointCloud grid_cloud(int n, double spacing_mm) {
+  PointCloud cloud;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      cloud.push_back(pcl::PointXYZ(static_cast<float>(i * spacing_mm), static_cast<float>(j * spacing_mm), 0.0f));
+  return cloud;
+}
+
+void save_pcd(const std::filesystem::path& file, const PointCloud& cloud) {
+  if (pcl::io::savePCDFileASCII(file.string(), cloud) < 0) throw std::runtime_error("cannot write " + file.string());
+}
+
+PointCloud load_cloud(const std::filesystem::path& file) {
+  PointCloud cloud;
+  const int status = file.extension() == ".ply" ? pcl::io::loadPLYFile(file.string(), cloud)
+                                                : pcl::io::loadPCDFile(file.string(), cloud);
+  if (status < 0) throw std::runtime_error("cannot read " + file.string());
+  return cloud;
+}
+
+}  // namespace touchcloud::test

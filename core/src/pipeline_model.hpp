@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -85,6 +86,7 @@ struct ResolvedStage {
   std::map<std::string, ParamValue> values;           // every parameter, defaults included
   std::map<std::string, SourceLocation> param_where;  // those set in the file or by --set
   std::vector<ResolvedInput> inputs;
+  std::set<std::string> wanted_outputs;  // read by some stage or a loop's `until`
   std::unique_ptr<RunContext> context;
   StageTiming timing;
   std::vector<const ResolvedLoop*> loops;  // enclosing loops, outermost first

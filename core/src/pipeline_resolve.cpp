@@ -232,6 +232,7 @@ class Resolver {
                                ref.output + " gives " + out->type);
           continue;
         }
+        stages_.at(ref.stage)->wanted_outputs.insert(ref.output);
         ResolvedInput r{ref.port, ref.stage + "." + ref.output, nullptr};
         if (ref.previous) {
           r.previous_of = common_loop(n.id, ref.stage);
@@ -287,6 +288,7 @@ class Resolver {
       return;
     }
     loops_.at(n.id)->until_key = n.until->stage + "." + n.until->output;
+    stages_.at(n.until->stage)->wanted_outputs.insert(n.until->output);
   }
 
   const ResolvedLoop* common_loop(const std::string& a, const std::string& b) {

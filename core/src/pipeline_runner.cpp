@@ -120,7 +120,7 @@ class Runner {
       const auto& source = in.previous_of ? previous_[in.previous_of] : values_;
       if (auto it = source.find(in.key); it != source.end()) inputs[in.port] = it->second;
     }
-    StageIO io(*s.ports, std::move(inputs));
+    StageIO io(*s.ports, std::move(inputs), s.wanted_outputs);
     timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
     ++s.timing.calls;
     for (auto& [port, value] : io.outputs()) values_[s.id + "." + port] = std::move(value);

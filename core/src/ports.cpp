@@ -13,8 +13,8 @@ const PortSpec* find_port(const std::vector<PortSpec>& ports, std::string_view n
 const PortSpec* PortSet::find_input(std::string_view name) const { return find_port(inputs_, name); }
 const PortSpec* PortSet::find_output(std::string_view name) const { return find_port(outputs_, name); }
 
-StageIO::StageIO(const PortSet& ports, std::map<std::string, std::any> inputs)
-    : ports_(ports), inputs_(std::move(inputs)) {}
+StageIO::StageIO(const PortSet& ports, std::map<std::string, std::any> inputs, std::set<std::string> wanted)
+    : ports_(ports), inputs_(std::move(inputs)), wanted_(std::move(wanted)) {}
 
 bool StageIO::has(std::string_view input) const { return inputs_.count(std::string(input)) > 0; }
 

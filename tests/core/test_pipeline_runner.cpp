@@ -40,6 +40,27 @@ TEST_F(PipelineRunner, UntilStopsTheLoopEarly) {
   EXPECT_EQ(series(r, "c.value").size(), 3u);
 }
 
+TEST_F(PipelineRunner, OnlyOutputsThatAreReadMustBeProduced) {
+  // Nothing reads c.done: the stage skips it, and the run accepts that.
+  RunResult r = run("stages:\n  - id: l\n    loop:\n      max_iterations: 4\n      stages:\n"
+                    "        - id: c\n          plugin: test_counter\n");
+  EXPECT_EQ(series(r, "c.done_computed").at(0), 0);
+  r = run("stages:\n  - id: l\n    loop:\n      max_iterations: 4\n      until: c.done\n      stages:\n"
+          "        - id: c\n          plugin: test_counter\n");
+  EXPECT_EQ(series(r, "c.done_computed").at(0), 4);
+}
+
+TEST_F(PipelineRunner, AWiredOutputThatIsNotProducedFailsTheRun) {
+  try {
+    run("stages:\n  - id: bad\n    plugin: test_throwing\n    params: {fail_at: 99, skip_output: true}\n"
+        "  - id: c\n    plugin: test_counter\n    inputs: {previous: bad.value}\n");
+    FAIL();
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("stage 'bad' (plugin test_throwing) failed in process: the stage did not "
+                                         "produce its output 'value'"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(PipelineRunner, NestedLoopsRestartTheirPreviousValues) {
   // The inner loop's first iteration has no previous value each time it
   // starts, so its count restarts at `step` in every outer iteration.

@@ -9,6 +9,7 @@
 
 #include <any>
 #include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <typeinfo>
@@ -60,9 +61,13 @@ class PortSet {
 // What one call of a stage's process hook reads and writes.
 class StageIO {
  public:
-  StageIO(const PortSet& ports, std::map<std::string, std::any> inputs);
+  // `wanted`: the outputs some stage reads; the others need not be produced.
+  StageIO(const PortSet& ports, std::map<std::string, std::any> inputs, std::set<std::string> wanted);
 
   bool has(std::string_view input) const;
+  // Whether anything reads output `name`: a stage can skip work (rendering,
+  // say) that no later stage consumes.
+  bool wants(std::string_view output) const { return wanted_.count(std::string(output)) > 0; }
   // The input's value; throws RunError when it is absent or of another type.
   template <class T>
   const T& input(std::string_view name) const {
@@ -90,6 +95,7 @@ class StageIO {
   const PortSet& ports_;
   std::map<std::string, std::any> inputs_;
   std::map<std::string, std::any> outputs_;
+  std::set<std::string> wanted_;
 };
 
 }  // namespace touchcloud

@@ -23,7 +23,7 @@ class Stage {
   void declare(ParameterSet& params, PortSet& ports);
   void check(RunContext& ctx) { on_check(ctx); }
   void configure(RunContext& ctx) { on_configure(ctx); }
-  // Runs the hook, then insists every declared output was produced.
+  // Runs the hook, then insists every output that is read was produced.
   void process(StageIO& io, RunContext& ctx);
   void finish(RunContext& ctx) { on_finish(ctx); }
 

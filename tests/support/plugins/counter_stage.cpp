@@ -27,13 +27,18 @@ class CounterStage final : public touchcloud::Stage {
     ++calls_;
     ctx.metric("value", value);
     io.output("value", value);
-    io.output("done", stop_at_ > 0 && calls_ >= stop_at_);
+    // Only what some stage reads is worth computing.
+    if (io.wants("done")) {
+      ++done_computed_;
+      io.output("done", stop_at_ > 0 && calls_ >= stop_at_);
+    }
   }
   void on_finish(touchcloud::RunContext& ctx) override {
     ctx.metric("calls", calls_, "calls");
+    ctx.metric("done_computed", done_computed_, "calls");
     ctx.metric("random_draw", static_cast<double>(ctx.rng()() % 1000000));
   }
-  int calls_ = 0;
+  int calls_ = 0, done_computed_ = 0;
 };
 }  // namespace
 

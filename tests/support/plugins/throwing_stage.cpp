@@ -6,13 +6,16 @@ class ThrowingStage final : public touchcloud::Stage {
   int fail_at_ = 0;
   void declare_parameters(touchcloud::ParameterSet& p) override {
     p.add("fail_at", fail_at_, 0).at_least(0).doc("call index that throws");
+    p.add("skip_output", skip_output_, false).doc("return without producing 'value'");
   }
   void declare_ports(touchcloud::PortSet& ports) override { ports.output<double>("value", "the call index"); }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
     if (calls_ == fail_at_) throw std::runtime_error("the gel tore (simulated failure)");
+    if (skip_output_) return;
     io.output("value", static_cast<double>(calls_++));
   }
   int calls_ = 0;
+  bool skip_output_ = false;
 };
 }  // namespace
 

@@ -1,0 +1,38 @@
+#include "touch_choice.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud {
+
+VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGrid& grid, int oversample) {
+  // Candidates at the centres of the cells of a finer grid.
+  WorkspaceGrid fine = grid;
+  fine.cells_x *= oversample;
+  fine.cells_y *= oversample;
+  const Eigen::MatrixX2d candidates = fine.cell_centres_mm();
+  const Eigen::VectorXd variance = surface.variance(candidates);
+  if (variance.size() != candidates.rows())
+    throw RunError("the surface model returned " + std::to_string(variance.size()) + " variances for " +
+                   std::to_string(candidates.rows()) + " positions");
+  Eigen::Index best = 0;
+  for (Eigen::Index i = 0; i < variance.size(); ++i) {
+    if (!std::isfinite(variance[i]) || variance[i] < 0)
+      throw RunError("the surface model gave variance " + std::to_string(variance[i]) + " at (" +
+                     std::to_string(candidates(i, 0)) + ", " + std::to_string(candidates(i, 1)) + ") mm");
+    if (variance[i] > variance[best]) best = i;
+  }
+  return {grid.nearest_cell(candidates.row(best).transpose()), variance[best]};
+}
+
+int random_cell(const WorkspaceGrid& grid, const std::set<int>& avoid, std::mt19937_64& rng) {
+  std::vector<int> free;
+  for (int c = 0; c < grid.cells(); ++c)
+    if (!avoid.count(c)) free.push_back(c);
+  if (free.empty()) return std::uniform_int_distribution<int>(0, grid.cells() - 1)(rng);
+  return free[std::uniform_int_distribution<std::size_t>(0, free.size() - 1)(rng)];
+}
+
+}  // namespace touchcloud

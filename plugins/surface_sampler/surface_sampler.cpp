@@ -1,0 +1,53 @@
+// surface_sampler: the fitted surface's mean on a regular lattice over the
+// workspace (the paper evaluates 200 x 200), as a cloud for scoring and
+// writing. Only the mean: the variance is not needed here and costs far more.
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/types/point_cloud.hpp"
+#include "touchcloud/types/surface_model.hpp"
+#include "touchcloud/types/workspace.hpp"
+
+namespace touchcloud {
+
+class SurfaceSampler final : public Stage {
+  std::vector<double> x_mm_, y_mm_, resolution_;
+  WorkspaceGrid area_;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("workspace_x_mm", x_mm_, std::vector<double>{0, 100}).unit("mm").size(2).doc("area [min, max] along x, base frame");
+    p.add("workspace_y_mm", y_mm_, std::vector<double>{0, 100}).unit("mm").size(2).doc("area [min, max] along y, base frame");
+    p.add("resolution", resolution_, std::vector<double>{200, 200}).size(2).range(2, 4000)
+        .doc("lattice points along x and y, edges included");
+  }
+  void declare_ports(PortSet& ports) override {
+    ports.input<SurfaceModelPtr>("surface", "the fitted surface");
+    ports.output<CloudConstPtr>("cloud", "surface points (x, y, mean z), base frame, mm");
+  }
+  void on_check(RunContext&) override {
+    area_.x_mm = {x_mm_[0], x_mm_[1]};
+    area_.y_mm = {y_mm_[0], y_mm_[1]};
+    area_.validate("workspace_x_mm", "workspace_y_mm", "resolution");
+    for (double r : resolution_)
+      if (r != std::floor(r)) throw ParameterError("resolution", "lattice sizes must be whole numbers");
+  }
+  void on_configure(RunContext& ctx) override { on_check(ctx); }
+
+  void on_process(StageIO& io, RunContext&) override {
+    const auto& surface = io.input<SurfaceModelPtr>("surface");
+    if (!surface) throw RunError("no surface model");
+    const Eigen::MatrixX2d xy = area_.lattice_mm(static_cast<int>(resolution_[0]), static_cast<int>(resolution_[1]));
+    const Eigen::VectorXd z = surface->mean(xy);
+    auto cloud = std::make_shared<PointCloud>();
+    cloud->reserve(static_cast<std::size_t>(xy.rows()));
+    for (Eigen::Index i = 0; i < xy.rows(); ++i) {
+      if (!std::isfinite(z[i]))
+        throw RunError("the surface mean is not finite at (" + std::to_string(xy(i, 0)) + ", " +
+                       std::to_string(xy(i, 1)) + ") mm");
+      cloud->push_back(pcl::PointXYZ(static_cast<float>(xy(i, 0)), static_cast<float>(xy(i, 1)), static_cast<float>(z[i])));
+    }
+    io.output("cloud", CloudConstPtr(cloud));
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::SurfaceSampler, "surface_sampler", "Samples a fitted surface's mean on a lattice over the workspace")

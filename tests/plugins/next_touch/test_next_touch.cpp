@@ -1,0 +1,96 @@
+// Eq. 10 on a surface whose variance peak is known, the random baseline, and
+// the guard that keeps bad variances from choosing a touch.
+#include <nlohmann/json.hpp>
+
+#include "pipeline_fixture.hpp"
+#include "touch_choice.hpp"
+
+using namespace touchcloud;
+
+namespace {
+// Variance = a field given per candidate by a function.
+class FieldSurface final : public SurfaceModel {
+ public:
+  explicit FieldSurface(std::function<double(double, double)> v) : v_(std::move(v)) {}
+  std::size_t training_size() const override { return 0; }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return Eigen::VectorXd::Zero(xy.rows()); }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override {
+    Eigen::VectorXd out(xy.rows());
+    for (Eigen::Index i = 0; i < xy.rows(); ++i) out[i] = v_(xy(i, 0), xy(i, 1));
+    return out;
+  }
+  std::map<std::string, double> hyperparameters() const override { return {}; }
+
+ private:
+  std::function<double(double, double)> v_;
+};
+
+WorkspaceGrid grid_10mm() {
+  WorkspaceGrid g;
+  g.x_mm = {0, 100};
+  g.y_mm = {0, 50};
+  g.cells_x = 10;
+  g.cells_y = 5;
+  return g;
+}
+}  // namespace
+
+TEST(NextTouch, ChoosesTheCellOfGreatestVariance) {
+  // A bump of variance centred at (73, 28): the cell whose centre is (75, 25).
+  FieldSurface s([](double x, double y) { return std::exp(-((x - 73) * (x - 73) + (y - 28) * (y - 28)) / 50.0); });
+  const VarianceChoice c = max_variance_cell(s, grid_10mm(), 1);
+  EXPECT_EQ(c.cell, 2 * 10 + 7);
+  // Oversampled candidates find the peak more finely, then snap to its cell.
+  EXPECT_EQ(max_variance_cell(s, grid_10mm(), 4).cell, 2 * 10 + 7);
+  EXPECT_GT(max_variance_cell(s, grid_10mm(), 4).variance_mm2, c.variance_mm2);
+}
+
+TEST(NextTouch, NegativeOrNaNVarianceNeverChoosesATouch) {
+  FieldSurface negative([](double x, double) { return x > 50 ? -1e-9 : 1.0; });
+  EXPECT_THROW(max_variance_cell(negative, grid_10mm(), 1), RunError);
+  FieldSurface nan([](double, double y) { return y > 40 ? std::nan("") : 1.0; });
+  EXPECT_THROW(max_variance_cell(nan, grid_10mm(), 1), RunError);
+}
+
+TEST(NextTouch, RandomCellsDoNotRepeatUntilAllAreUsed) {
+  const WorkspaceGrid g = grid_10mm();
+  std::mt19937_64 rng(3);
+  std::set<int> used;
+  for (int i = 0; i < g.cells(); ++i) {
+    const int c = random_cell(g, used, rng);
+    EXPECT_FALSE(used.count(c));
+    used.insert(c);
+  }
+  EXPECT_EQ(static_cast<int>(used.size()), g.cells());
+  const int again = random_cell(g, used, rng);
+  EXPECT_TRUE(again >= 0 && again < g.cells());
+}
+
+class NextTouchStage : public touchcloud::test::PipelineFixture {};
+
+TEST_F(NextTouchStage, InitialTouchesAreRandomThenVarianceDecides) {
+  // Variance grows with distance from (0, 0): after 2 random touches, the
+  // far corner's cell 49 (centre (95, 45)).
+  Pipeline p = load(
+      "stages:\n  - id: model\n    plugin: test_plane_surface\n    params: {peak_mm: [0, 0]}\n"
+      "  - id: l\n    loop:\n      max_iterations: 4\n      stages:\n"
+      "        - id: plan\n          plugin: next_touch\n"
+      "          params: {workspace_x_mm: [0, 100], workspace_y_mm: [0, 50], grid: [10, 5], initial_random: 2}\n"
+      "          inputs: {surface: model.surface}\n");
+  RunOptions o;
+  o.quiet = true;
+  const RunResult r = run_pipeline(p, o);
+  const auto& cells = r.record.metrics.at("plan.cell").values;
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_NE(cells[0], cells[1]);
+  EXPECT_EQ(cells[2], 49);
+  EXPECT_EQ(cells[3], 49);
+  EXPECT_EQ(r.record.metrics.at("plan.chosen_variance").values.size(), 2u);
+}
+
+TEST_F(NextTouchStage, EmptyWorkspaceIsRefusedAtValidation) {
+  const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {workspace_x_mm: [10, 10]}\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter 'workspace_x_mm': the workspace is empty")) << d[0].str();
+  EXPECT_EQ(d[0].where.line, 4);
+}

@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libpcl-dev libopencv-dev libboost-dev libboost-filesystem-dev
   libyaml-cpp-dev libceres-dev libflann-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -29,7 +29,12 @@ int main(int argc, char** argv) {
                ": point clouds and shapes from visuotactile sensors"};
   app.set_version_flag("--version", std::string(touchcloud::kVersion));
   app.require_subcommand(1);
-  const std::vector<Action*> actions = {add_run_verb(app), add_validate_verb(app), add_plugins_verb(app)};
+  const std::vector<Action*> actions = {
+      add_run_verb(app),
+      add_validate_verb(app),
+      add_plugins_verb(app),
+      add_sweep_verb(app),
+  };
 
   try {
     app.parse(argc, argv);

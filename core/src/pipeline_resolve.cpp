@@ -67,7 +67,7 @@ class Resolver {
   }
 
   void apply_override(const Override& o) {
-    const SourceLocation where{"--set " + o.key + "=" + o.value};
+    const SourceLocation where{o.origin + " " + o.key + "=" + o.value};
     const auto dot = o.key.find('.');
     if (dot == std::string::npos || dot == 0 || dot + 1 == o.key.size()) {
       error(where, "'" + o.key + "' must be STAGE.PARAM");

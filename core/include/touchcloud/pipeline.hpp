@@ -33,8 +33,9 @@ namespace touchcloud {
 
 // `--set stage.param=value` from the command line.
 struct Override {
-  std::string key;    // "stage.param"
-  std::string value;  // parsed as YAML, so lists read [1, 2, 3]
+  std::string key;              // "stage.param"
+  std::string value;            // parsed as YAML, so lists read [1, 2, 3]
+  std::string origin = "--set";  // the option it came from, for messages
 };
 Override parse_override(const std::string& text);  // "k=v"; InputError otherwise
 

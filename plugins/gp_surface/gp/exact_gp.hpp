@@ -1,0 +1,97 @@
+// Exact Gaussian-process surface z = f(x, y) in mm, at fixed hyperparameters.
+// Keeps the Cholesky factor L of A = K + (s^2 + c) I (c: jitter, if needed) and
+// alpha = A^-1 (z - z0). The mean runs through alpha in query blocks (memory
+// n x block); the variance through L^-1 k_x, only where asked. New touches
+// extend L by a bordered Cholesky update instead of a refactorisation.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "gp/hyperparameters.hpp"
+#include "gp/jittered_cholesky.hpp"
+#include "gp/kernel.hpp"
+#include "gp/training_data.hpp"
+
+namespace touchcloud::gp {
+
+struct ExactGpOptions {
+  JitterSchedule jitter;
+  // Cross-covariance blocks hold at most this many doubles (n x block queries).
+  Eigen::Index query_block_doubles = Eigen::Index{1} << 21;  // 16 MB
+  // Room left for later touches when the factor is (re)allocated, as a
+  // fraction of the training size; growing copies the whole factor.
+  double capacity_slack = 0.25;
+};
+
+enum class UpdatePath { bordered, refactorised };
+std::string to_string(UpdatePath path);
+
+struct UpdateReport {
+  UpdatePath path = UpdatePath::bordered;
+  Eigen::Index points_added = 0;
+  CholeskyReport factorisation;  // jitter in force after the update
+  std::string reason;            // why a refactorisation was needed; empty otherwise
+};
+
+class ExactGp {
+ public:
+  ExactGp(KernelKind kind, const Hyperparameters& h, ExactGpOptions options = {});
+
+  // Replaces the training set. The centring comes from the data unless given;
+  // zero points leave the prior (mean z0, variance = signal variance).
+  // InputError on bad input (the model is unchanged); RunError when A cannot
+  // be factorised within the jitter schedule (the model is left empty: the
+  // prior). add_points behaves the same way.
+  void fit(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm);
+  void fit(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm, const Centring& centring);
+
+  // Adds touches at the same hyperparameters and centring (so the result equals
+  // fit(all points, same centring) when no jitter is involved). Falls back to a
+  // jittered refactorisation when the new Schur complement is not positive.
+  UpdateReport add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm);
+
+  // Makes room for `points` training points without reallocating later.
+  void reserve(Eigen::Index points);
+
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy_mm) const;
+  // Mean on the grid xs x ys: result(i, j) at (xs[i], ys[j]). The RBF kernel
+  // factorises over x and y, so this costs (nx + ny) n exponentials and one
+  // matrix product instead of nx ny n exponentials; Matern 5/2 does not, and
+  // goes through mean().
+  Eigen::MatrixXd mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen::VectorXd& ys_mm) const;
+  // Latent (noise-free) variance, mm^2, clamped at 0; the number of clamped
+  // values goes to *clamped_count when given.
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
+  double log_marginal_likelihood() const;
+
+  Eigen::Index size() const { return n_; }
+  KernelKind kernel_kind() const { return kernel_.kind(); }
+  const Hyperparameters& hyperparameters() const { return kernel_.hyperparameters(); }
+  const Centring& centring() const { return centring_; }
+  const CholeskyReport& factorisation() const { return factorisation_; }
+  Eigen::MatrixXd cholesky_factor() const;         // L, n x n, zero above the diagonal
+  const Eigen::VectorXd& weights() const { return alpha_; }  // alpha
+
+ private:
+  void refactorise();  // from x_, y_, z_ with the jitter schedule
+  void ensure_capacity(Eigen::Index points);
+  Eigen::Index query_block() const;
+  auto factor() { return storage_.topLeftCorner(n_, n_); }
+  auto factor() const { return storage_.topLeftCorner(n_, n_); }
+
+  Kernel kernel_;
+  ExactGpOptions options_;
+  Centring centring_;
+  bool centring_fixed_ = false;
+  Eigen::Index n_ = 0;
+  Eigen::VectorXd x_, y_, z_;  // centred
+  Eigen::MatrixXd storage_;    // capacity x capacity; lower n x n corner holds L
+  Eigen::VectorXd v_;          // L^-1 (z - z0), kept so updates extend it
+  Eigen::VectorXd alpha_;
+  CholeskyReport factorisation_;
+};
+
+}  // namespace touchcloud::gp

@@ -1,0 +1,90 @@
+#include "gp/kernel.hpp"
+
+#include <cmath>
+
+namespace touchcloud::gp {
+
+namespace {
+constexpr double kSqrt5 = 2.23606797749978969640917366873128;
+}
+
+Kernel::Kernel(KernelKind kind, const Hyperparameters& h) : kind_(kind), h_(h) {
+  h_.validate("GP kernel");
+  inv_lengthscale2_ = 1.0 / (h_.lengthscale_mm * h_.lengthscale_mm);
+}
+
+// With t = r^2 / l^2: RBF shape exp(-t/2), d/dlog l = t exp(-t/2).
+// Matern 5/2 with s = sqrt(5 t): (1 + s + s^2/3) e^-s, d/dlog l = (s^2/3)(1 + s) e^-s.
+// Neither divides by r, so both are exact at r = 0 (duplicates).
+double Kernel::covariance(double r2_mm2) const {
+  const double t = r2_mm2 * inv_lengthscale2_;
+  if (kind_ == KernelKind::rbf) return h_.signal_variance_mm2 * std::exp(-0.5 * t);
+  const double s = kSqrt5 * std::sqrt(t);
+  return h_.signal_variance_mm2 * (1.0 + s + s * s / 3.0) * std::exp(-s);
+}
+
+double Kernel::d_covariance_d_log_lengthscale(double r2_mm2) const {
+  const double t = r2_mm2 * inv_lengthscale2_;
+  if (kind_ == KernelKind::rbf) return h_.signal_variance_mm2 * t * std::exp(-0.5 * t);
+  const double s = kSqrt5 * std::sqrt(t);
+  return h_.signal_variance_mm2 * (s * s / 3.0) * (1.0 + s) * std::exp(-s);
+}
+
+void Kernel::covariance_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
+  const double s2 = h_.signal_variance_mm2;
+  if (kind_ == KernelKind::rbf) {
+    v = s2 * (v * (-0.5 * inv_lengthscale2_)).exp();
+  } else {
+    v = (v * (5.0 * inv_lengthscale2_)).sqrt();
+    v = s2 * (1.0 + v + v.square() * (1.0 / 3.0)) * (-v).exp();
+  }
+}
+
+void Kernel::d_log_lengthscale_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
+  const double s2 = h_.signal_variance_mm2;
+  if (kind_ == KernelKind::rbf) {
+    v *= inv_lengthscale2_;
+    v = s2 * v * (-0.5 * v).exp();
+  } else {
+    v = (v * (5.0 * inv_lengthscale2_)).sqrt();
+    v = s2 * (v.square() * (1.0 / 3.0)) * (1.0 + v) * (-v).exp();
+  }
+}
+
+void Kernel::covariance_and_d_log_lengthscale(Eigen::Map<Eigen::ArrayXd> v, Eigen::Map<Eigen::ArrayXd> dk) const {
+  const double s2 = h_.signal_variance_mm2;
+  if (kind_ == KernelKind::rbf) {
+    dk = v * inv_lengthscale2_;          // t
+    v = s2 * (-0.5 * dk).exp();          // k
+    dk *= v;                             // t k
+  } else {
+    dk = (v * (5.0 * inv_lengthscale2_)).sqrt();  // s
+    const auto poly = 1.0 + dk + dk.square() * (1.0 / 3.0);
+    v = s2 * poly * (-dk).exp();                                    // k
+    dk = v * (dk.square() * (1.0 / 3.0)) * (1.0 + dk) / poly;       // (s^2/3)(1 + s) s2 e^-s
+  }
+}
+
+void Kernel::fill_lower(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double diagonal_add,
+                        Eigen::Ref<Eigen::MatrixXd> out) const {
+  const Eigen::Index n = x.size();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Index len = n - j;
+    Eigen::Map<Eigen::ArrayXd> col(out.col(j).data() + j, len);
+    col = (x.segment(j, len).array() - x[j]).square() + (y.segment(j, len).array() - y[j]).square();
+    covariance_in_place(col);
+    col[0] += diagonal_add;
+  }
+}
+
+void Kernel::fill_cross(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::Ref<const Eigen::VectorXd>& qx,
+                        const Eigen::Ref<const Eigen::VectorXd>& qy, Eigen::Ref<Eigen::MatrixXd> out) const {
+  const Eigen::Index n = px.size();
+  for (Eigen::Index j = 0; j < qx.size(); ++j) {
+    Eigen::Map<Eigen::ArrayXd> col(out.col(j).data(), n);
+    col = (px.array() - qx[j]).square() + (py.array() - qy[j]).square();
+    covariance_in_place(col);
+  }
+}
+
+}  // namespace touchcloud::gp

@@ -1,0 +1,276 @@
+// Hyperparameter selection: hard cases 4 (units) and 10 (optimiser), the data
+// checks, and recovery of known hyperparameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Dense>
+
+#include "gp/exact_gp.hpp"
+#include "gp/hyperparameter_search.hpp"
+#include "gp/marginal_likelihood.hpp"
+#include "gp_fixtures.hpp"
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::gp {
+namespace {
+
+using test::grid_xy;
+using test::heights;
+using test::random_xy;
+
+// A sample of a GP prior with known hyperparameters (seeded).
+Eigen::VectorXd prior_sample(KernelKind kind, const Hyperparameters& h, const Eigen::MatrixX2d& xy, unsigned seed) {
+  const Kernel k(kind, h);
+  const Eigen::Index n = xy.rows();
+  Eigen::MatrixXd a(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) a(i, j) = k.covariance((xy.row(i) - xy.row(j)).squaredNorm());
+  a.diagonal().array() += h.noise_variance_mm2 + 1e-9;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g;
+  Eigen::VectorXd w(n);
+  for (Eigen::Index i = 0; i < n; ++i) w[i] = g(rng);
+  return Eigen::LLT<Eigen::MatrixXd>(a).matrixL() * w;
+}
+
+TEST(GpHyperparameterSearch, RecoversKnownHyperparameters) {
+  const Eigen::MatrixX2d xy = random_xy(250, 31);
+  const Hyperparameters truth{4.0, 8.0, 0.01};
+  const Eigen::VectorXd z = prior_sample(KernelKind::rbf, truth, xy, 32);
+  const SearchResult r = select_hyperparameters(xy, z);
+  EXPECT_NEAR(r.hyperparameters.lengthscale_mm / truth.lengthscale_mm, 1.0, 0.25);
+  EXPECT_NEAR(r.hyperparameters.noise_variance_mm2 / truth.noise_variance_mm2, 1.0, 0.4);
+  EXPECT_GT(r.hyperparameters.signal_variance_mm2, truth.signal_variance_mm2 / 4);
+  EXPECT_LT(r.hyperparameters.signal_variance_mm2, truth.signal_variance_mm2 * 4);
+  EXPECT_TRUE(r.bounds.contains(r.hyperparameters));
+}
+
+// Case 10: the result is no worse than the first start, than any start point,
+// or than any start's own optimum; it is a local maximum of the LML.
+TEST(GpHyperparameterSearch, NeverWorseThanAnyStartOrRestart) {
+  const Eigen::MatrixX2d xy = random_xy(150, 33);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    SearchOptions options;
+    options.kernel = kind;
+    options.start_lengthscales_mm = {1.0, 10.0, 300.0};
+    const SearchResult r = select_hyperparameters(xy, z, options);
+    ASSERT_EQ(r.starts.size(), 3u);
+    EXPECT_GT(r.iterations, 0);
+    EXPECT_GE(r.lml, r.initial_lml);
+    EXPECT_EQ(r.initial_lml, r.starts[0].start_lml);
+    for (const StartReport& s : r.starts) {
+      EXPECT_GE(s.lml, s.start_lml) << s.solver_report;
+      EXPECT_GE(r.lml, s.lml);
+    }
+    EXPECT_EQ(r.lml, r.starts[r.best_start].lml);
+
+    MarginalLikelihood lml(kind, xy, z);
+    EXPECT_NEAR(lml.evaluate(r.hyperparameters, false).lml, r.lml, 1e-9 * std::abs(r.lml));
+    for (const StartReport& s : r.starts)
+      EXPECT_NEAR(lml.evaluate(s.start, false).lml, s.start_lml, 1e-9 * std::abs(s.start_lml));
+    for (int i = 0; i < 3; ++i)
+      for (double d : {-0.05, 0.05}) {
+        LogHyperparameters t = to_log(r.hyperparameters);
+        t[i] += d;
+        EXPECT_LE(lml.evaluate(from_log(t), false).lml, r.lml + 1e-9) << to_string(kind) << " parameter " << i;
+      }
+  }
+}
+
+// Case 10 with screening: restarts on a subset, then one full-data run from
+// the best candidate; the result beats every start and every subset optimum
+// on the full-data LML and is a local maximum there.
+TEST(GpHyperparameterSearch, ScreeningOnASubsetNeverLosesToACandidate) {
+  const Eigen::MatrixX2d xy = random_xy(400, 42);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  SearchOptions options;
+  options.screening_points = 120;
+  const SearchResult r = select_hyperparameters(xy, z, options);
+  EXPECT_EQ(r.screening_points, 120);
+  ASSERT_EQ(r.screening.size(), 3u);
+  ASSERT_EQ(r.starts.size(), 1u);
+  MarginalLikelihood lml(KernelKind::rbf, xy, z);
+  EXPECT_EQ(r.initial_lml, lml.evaluate(r.screening[0].start, false).lml);
+  EXPECT_GE(r.lml, r.initial_lml);
+  for (const StartReport& s : r.screening) {
+    EXPECT_GE(r.lml, lml.evaluate(s.start, false).lml);
+    EXPECT_GE(r.lml, lml.evaluate(s.result, false).lml);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (double d : {-0.05, 0.05}) {
+      LogHyperparameters t = to_log(r.hyperparameters);
+      t[i] += d;
+      EXPECT_LE(lml.evaluate(from_log(t), false).lml, r.lml + 1e-9) << "parameter " << i;
+    }
+}
+
+// A warm start (the previous touch's optimum) replaces the default starts.
+TEST(GpHyperparameterSearch, WarmStartIsUsedAndClamped) {
+  const Eigen::MatrixX2d xy = random_xy(100, 43);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  SearchOptions options;
+  options.start_hyperparameters = {{2.0, 12.0, 0.01}, {2.0, 1e9, 0.01}};
+  const SearchResult r = select_hyperparameters(xy, z, options);
+  ASSERT_EQ(r.starts.size(), 2u);
+  EXPECT_NEAR(r.starts[0].start.lengthscale_mm, 12.0, 1e-9);
+  EXPECT_NEAR(r.starts[1].start.lengthscale_mm / r.bounds.upper.lengthscale_mm, 1.0, 1e-4);
+  EXPECT_GE(r.lml, r.initial_lml);
+}
+
+// Case 10: restarts, on a likelihood with two separated maxima in log l
+// (the lower one near the first start): the best restart wins.
+TEST(GpHyperparameterSearch, RestartsKeepTheBestOptimum) {
+  const HyperparameterBounds bounds{{1e-2, 1e-2, 1e-4}, {1e2, 1e3, 1.0}};
+  // Peaks at log l = 0 (height 1) and log l = 4 (height 3), quadratic elsewhere.
+  const LmlFunction f = [](const LogHyperparameters& t, double& value, Eigen::Vector3d* g) {
+    const double a = t[1], b = t[1] - 4.0;
+    const double pa = std::exp(-a * a), pb = 3.0 * std::exp(-b * b);
+    value = pa + pb - 0.5 * (t[0] * t[0] + (t[2] + 3.0) * (t[2] + 3.0));
+    if (g) *g << -t[0], -2 * a * pa - 2 * b * pb, -(t[2] + 3.0);
+    return true;
+  };
+  SearchOptions options;
+  const std::vector<Hyperparameters> starts = {{1.5, std::exp(0.3), 0.1}, {1.0, std::exp(3.5), 0.1}};
+  const SearchResult r = maximise_lml(f, bounds, starts, options);
+  ASSERT_EQ(r.starts.size(), 2u);
+  EXPECT_NEAR(std::log(r.starts[0].result.lengthscale_mm), 0.0, 1e-3);
+  EXPECT_NEAR(r.starts[0].lml, 1.0, 1e-6);
+  EXPECT_NEAR(std::log(r.hyperparameters.lengthscale_mm), 4.0, 1e-3);
+  EXPECT_NEAR(r.lml, 3.0, 1e-6);
+  EXPECT_EQ(r.best_start, 1u);
+  EXPECT_NEAR(r.hyperparameters.signal_variance_mm2, 1.0, 1e-3);
+  EXPECT_NEAR(std::log(r.hyperparameters.noise_variance_mm2), -3.0, 1e-3);
+}
+
+// Case 10: evaluations that fail (as a Cholesky failure would) make the line
+// search back off; the result is a point that could be evaluated, no worse
+// than the start.
+TEST(GpHyperparameterSearch, FailedEvaluationsBackOff) {
+  const Eigen::MatrixX2d xy = random_xy(100, 34);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  MarginalLikelihood lml(KernelKind::rbf, xy, z);
+  // The data want l ~ 10 mm; refuse anything above 4 mm. The start (2 mm)
+  // climbs towards the refused region.
+  const double refuse_above = std::log(4.0);
+  int refused = 0;
+  const LmlFunction f = [&](const LogHyperparameters& t, double& value, Eigen::Vector3d* g) {
+    if (t[1] > refuse_above) {
+      ++refused;
+      return false;
+    }
+    const LmlEvaluation e = lml.evaluate(from_log(t), g != nullptr);
+    value = e.lml;
+    if (g) *g = e.gradient;
+    return true;
+  };
+  const HyperparameterBounds bounds{{1e-3, 0.1, 1e-6}, {1e3, 600.0, 10.0}};
+  const SearchResult r = maximise_lml(f, bounds, {{1.0, 2.0, 0.01}}, SearchOptions{});
+  EXPECT_GT(r.failed_evaluations, 0);
+  EXPECT_EQ(r.failed_evaluations, refused);
+  EXPECT_LE(std::log(r.hyperparameters.lengthscale_mm), refuse_above);
+  EXPECT_GT(r.hyperparameters.lengthscale_mm, 3.0) << "it should still climb towards the boundary";
+  EXPECT_GE(r.lml, r.initial_lml);
+  EXPECT_TRUE(std::isfinite(r.lml));
+}
+
+TEST(GpHyperparameterSearch, AStartThatCannotBeEvaluatedIsSkipped) {
+  const Eigen::MatrixX2d xy = random_xy(60, 35);
+  MarginalLikelihood lml(KernelKind::rbf, xy, heights(xy, 0.1));
+  const LmlFunction f = [&](const LogHyperparameters& t, double& value, Eigen::Vector3d* g) {
+    if (t[1] < std::log(2.0)) return false;
+    const LmlEvaluation e = lml.evaluate(from_log(t), g != nullptr);
+    value = e.lml;
+    if (g) *g = e.gradient;
+    return true;
+  };
+  const HyperparameterBounds bounds{{1e-3, 0.1, 1e-6}, {1e3, 600.0, 10.0}};
+  const SearchResult r = maximise_lml(f, bounds, {{1.0, 1.0, 0.01}, {1.0, 20.0, 0.01}}, SearchOptions{});
+  EXPECT_EQ(r.starts[0].start_lml, kNoLml);
+  EXPECT_EQ(r.initial_lml, kNoLml);
+  EXPECT_EQ(r.best_start, 1u);
+  EXPECT_TRUE(std::isfinite(r.lml));
+
+  const LmlFunction never = [](const LogHyperparameters&, double&, Eigen::Vector3d*) { return false; };
+  EXPECT_THROW(maximise_lml(never, bounds, {{1.0, 1.0, 0.01}}, SearchOptions{}), RunError);
+}
+
+// Case 4: bounds follow the units; so does the selected lengthscale, and the
+// fitted surfaces agree after conversion.
+TEST(GpHyperparameterSearch, UnitsScaleBoundsAndResult) {
+  const Eigen::MatrixX2d xy = random_xy(120, 36);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  const DataScales mm = data_scales(xy, z);
+  const DataScales xy_m = data_scales(xy / 1000.0, z);
+  const DataScales z_m = data_scales(xy, z / 1000.0);
+  const HyperparameterBounds b_mm = bounds_from_scales(mm), b_xy_m = bounds_from_scales(xy_m),
+                             b_z_m = bounds_from_scales(z_m);
+  EXPECT_NEAR(b_xy_m.lower.lengthscale_mm * 1000.0, b_mm.lower.lengthscale_mm, 1e-12 * b_mm.lower.lengthscale_mm);
+  EXPECT_NEAR(b_xy_m.upper.lengthscale_mm * 1000.0, b_mm.upper.lengthscale_mm, 1e-12 * b_mm.upper.lengthscale_mm);
+  EXPECT_NEAR(b_z_m.lower.noise_variance_mm2 * 1e6, b_mm.lower.noise_variance_mm2, 1e-12 * b_mm.lower.noise_variance_mm2);
+  EXPECT_NEAR(b_z_m.upper.signal_variance_mm2 * 1e6, b_mm.upper.signal_variance_mm2,
+              1e-12 * b_mm.upper.signal_variance_mm2);
+  EXPECT_EQ(b_z_m.lower.lengthscale_mm, b_mm.lower.lengthscale_mm);
+
+  const SearchResult r_mm = select_hyperparameters(xy, z);
+  const SearchResult r_xy_m = select_hyperparameters(xy / 1000.0, z);
+  const SearchResult r_z_m = select_hyperparameters(xy, z / 1000.0);
+  EXPECT_NEAR(r_xy_m.hyperparameters.lengthscale_mm * 1000.0 / r_mm.hyperparameters.lengthscale_mm, 1.0, 1e-4);
+  EXPECT_NEAR(r_z_m.hyperparameters.lengthscale_mm / r_mm.hyperparameters.lengthscale_mm, 1.0, 1e-4);
+  EXPECT_NEAR(r_z_m.hyperparameters.signal_variance_mm2 * 1e6 / r_mm.hyperparameters.signal_variance_mm2, 1.0, 1e-3);
+
+  const Eigen::MatrixX2d q = grid_xy(8, 8, 0.0, 60.0);
+  ExactGp gp_mm(KernelKind::rbf, r_mm.hyperparameters), gp_m(KernelKind::rbf, r_xy_m.hyperparameters);
+  gp_mm.fit(xy, z);
+  gp_m.fit(xy / 1000.0, z);
+  EXPECT_LT((gp_m.mean(q / 1000.0) - gp_mm.mean(q)).cwiseAbs().maxCoeff(), 1e-4);
+}
+
+// Case 3 for selection: a base-frame offset changes nothing.
+TEST(GpHyperparameterSearch, ShiftInvariant) {
+  const Eigen::MatrixX2d xy = random_xy(100, 37);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  const SearchResult near = select_hyperparameters(xy, z);
+  const SearchResult far = select_hyperparameters(xy.rowwise() + Eigen::RowVector2d(1e7, -1e6), z.array() + 1e4);
+  EXPECT_NEAR(far.hyperparameters.lengthscale_mm / near.hyperparameters.lengthscale_mm, 1.0, 1e-8);
+  EXPECT_NEAR(far.lml, near.lml, 1e-8 * std::abs(near.lml));
+}
+
+// Case 5 for selection: a flat plate selects finite hyperparameters and its
+// surface is the plate.
+TEST(GpHyperparameterSearch, ConstantTarget) {
+  const Eigen::MatrixX2d xy = random_xy(80, 38);
+  const Eigen::VectorXd z = Eigen::VectorXd::Constant(80, -2.5);
+  const SearchResult r = select_hyperparameters(xy, z);
+  EXPECT_TRUE(std::isfinite(r.lml));
+  EXPECT_TRUE(r.bounds.contains(r.hyperparameters));
+  ExactGp gp(KernelKind::rbf, r.hyperparameters);
+  gp.fit(xy, z);
+  const Eigen::MatrixX2d q = grid_xy(6, 6, 0.0, 60.0);
+  EXPECT_LT((gp.mean(q).array() + 2.5).abs().maxCoeff(), 1e-12);
+  EXPECT_TRUE(gp.variance(q).allFinite());
+}
+
+TEST(GpHyperparameterSearch, BadDataIsAnInputError) {
+  const Eigen::MatrixX2d two = random_xy(2, 39);
+  EXPECT_THROW(select_hyperparameters(two, heights(two)), InputError);
+  const Eigen::MatrixX2d same = Eigen::MatrixX2d::Constant(10, 2, 5.0);
+  try {
+    select_hyperparameters(same, Eigen::VectorXd::LinSpaced(10, 0.0, 1.0));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("share"), std::string::npos) << e.what();
+  }
+  Eigen::MatrixX2d xy = random_xy(10, 40);
+  Eigen::VectorXd z = heights(xy);
+  z[4] = std::nan("");
+  EXPECT_THROW(select_hyperparameters(xy, z), InputError);
+  SearchOptions bad;
+  bad.start_lengthscales_mm = {-1.0};
+  EXPECT_THROW(select_hyperparameters(random_xy(10, 41), heights(random_xy(10, 41)), bad), InputError);
+}
+
+}  // namespace
+}  // namespace touchcloud::gp

@@ -1,0 +1,139 @@
+// Bordered Cholesky updates after new touches: hard case 12.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "gp/exact_gp.hpp"
+#include "gp_fixtures.hpp"
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::gp {
+namespace {
+
+using test::grid_xy;
+using test::heights;
+using test::max_relative_difference;
+using test::random_xy;
+
+double relative_matrix_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+}
+
+// Touches arrive in batches (1, 20, 7 points); after each, L and alpha equal a
+// batch refit at the same centring. No slack, so every update also regrows
+// the factor's storage.
+TEST(GpIncrementalUpdate, BorderedUpdateEqualsBatchRefit) {
+  const Eigen::MatrixX2d xy = random_xy(328, 51);
+  const Eigen::VectorXd z = heights(xy, 0.05);
+  const Eigen::MatrixX2d q = grid_xy(7, 7, 0.0, 60.0);
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    const Hyperparameters h{4.0, 8.0, 0.01};
+    ExactGpOptions options;
+    options.capacity_slack = 0.0;
+    ExactGp gp(kind, h, options);
+    gp.fit(xy.topRows(300), z.head(300));
+    const Centring centring = gp.centring();
+    Eigen::Index n = 300;
+    for (Eigen::Index k : {1, 20, 7}) {
+      const UpdateReport report = gp.add_points(xy.middleRows(n, k), z.segment(n, k));
+      n += k;
+      EXPECT_EQ(report.path, UpdatePath::bordered) << report.reason;
+      EXPECT_EQ(report.points_added, k);
+      EXPECT_EQ(gp.size(), n);
+
+      ExactGp batch(kind, h);
+      batch.fit(xy.topRows(n), z.head(n), centring);
+      EXPECT_LT(relative_matrix_difference(gp.cholesky_factor(), batch.cholesky_factor()), 1e-10) << to_string(kind);
+      EXPECT_LT(max_relative_difference(gp.weights(), batch.weights()), 1e-10) << to_string(kind);
+      EXPECT_LT(max_relative_difference(gp.mean(q), batch.mean(q)), 1e-10);
+      EXPECT_LT(max_relative_difference(gp.variance(q), batch.variance(q)), 1e-9);
+      EXPECT_NEAR(gp.log_marginal_likelihood(), batch.log_marginal_likelihood(),
+                  1e-10 * std::abs(batch.log_marginal_likelihood()));
+    }
+    EXPECT_EQ(gp.centring().z_mm, centring.z_mm) << "offsets stay fixed across updates";
+  }
+}
+
+// A new point that duplicates a training point with no noise makes the Schur
+// complement singular: the update refactorises with jitter and says why.
+TEST(GpIncrementalUpdate, SingularSchurComplementFallsBackToRefactorisation) {
+  const Eigen::MatrixX2d xy = random_xy(60, 52);
+  const Eigen::VectorXd z = heights(xy, 0.05);
+  const Hyperparameters h{4.0, 5.0, 0.0};
+  ExactGp gp(KernelKind::rbf, h);
+  gp.fit(xy, z);
+  ASSERT_EQ(gp.factorisation().jitter_mm2, 0.0) << "fixture: the first fit needs no jitter";
+
+  const Eigen::MatrixX2d dup = xy.row(17);
+  const UpdateReport report = gp.add_points(dup, Eigen::VectorXd::Constant(1, z[17] + 0.3));
+  EXPECT_EQ(report.path, UpdatePath::refactorised);
+  EXPECT_FALSE(report.reason.empty());
+  EXPECT_GT(report.factorisation.jitter_mm2, 0.0);
+  EXPECT_EQ(report.factorisation.jitter_mm2, gp.factorisation().jitter_mm2);
+
+  Eigen::MatrixX2d all(61, 2);
+  all << xy, dup;
+  Eigen::VectorXd z_all(61);
+  z_all << z, z[17] + 0.3;
+  ExactGp batch(KernelKind::rbf, h);
+  batch.fit(all, z_all, gp.centring());
+  EXPECT_EQ(batch.factorisation().jitter_mm2, report.factorisation.jitter_mm2);
+  EXPECT_LT(relative_matrix_difference(gp.cholesky_factor(), batch.cholesky_factor()), 1e-14);
+  EXPECT_LT(max_relative_difference(gp.weights(), batch.weights()), 1e-14);
+}
+
+// The jitter of an earlier factorisation stays in force for the new block.
+TEST(GpIncrementalUpdate, KeepsTheJitterInForce) {
+  const Eigen::MatrixX2d base = random_xy(50, 53);
+  Eigen::MatrixX2d xy(100, 2);
+  xy << base, base.col(0).array() + 1e-10, base.col(1);
+  const Eigen::VectorXd z = heights(xy, 0.05);
+  const Hyperparameters h{2.0, 6.0, 0.0};
+  ExactGp gp(KernelKind::matern52, h);
+  gp.fit(xy.topRows(90), z.head(90));
+  const double jitter = gp.factorisation().jitter_mm2;
+  ASSERT_GT(jitter, 0.0);
+  const UpdateReport report = gp.add_points(xy.bottomRows(10), z.tail(10));
+  ASSERT_EQ(report.path, UpdatePath::bordered) << report.reason;
+  EXPECT_EQ(report.factorisation.jitter_mm2, jitter);
+  const Eigen::MatrixXd l = gp.cholesky_factor();
+  JitterSchedule none;
+  none.max_jitter_tries = 0;
+  ExactGp exact_a(KernelKind::matern52, {2.0, 6.0, jitter}, ExactGpOptions{none});  // the same A
+  exact_a.fit(xy, z, gp.centring());
+  EXPECT_LT(relative_matrix_difference(l, exact_a.cholesky_factor()), 1e-8);
+  EXPECT_LT(max_relative_difference(gp.mean(xy), exact_a.mean(xy)), 1e-6);
+}
+
+TEST(GpIncrementalUpdate, EmptyModelAndEmptyBatch) {
+  const Eigen::MatrixX2d xy = random_xy(20, 54);
+  const Eigen::VectorXd z = heights(xy);
+  ExactGp gp(KernelKind::rbf, {1.0, 10.0, 0.01});
+  const UpdateReport first = gp.add_points(xy, z);
+  EXPECT_EQ(first.path, UpdatePath::refactorised);
+  EXPECT_EQ(gp.size(), 20);
+  EXPECT_DOUBLE_EQ(gp.centring().z_mm, z.mean());
+
+  const Eigen::VectorXd alpha = gp.weights();
+  const UpdateReport none = gp.add_points(Eigen::MatrixX2d(0, 2), Eigen::VectorXd(0));
+  EXPECT_EQ(none.points_added, 0);
+  EXPECT_EQ(gp.size(), 20);
+  EXPECT_EQ(gp.weights(), alpha);
+}
+
+// Bad input leaves the model as it was.
+TEST(GpIncrementalUpdate, BadInputChangesNothing) {
+  const Eigen::MatrixX2d xy = random_xy(20, 55);
+  const Eigen::VectorXd z = heights(xy);
+  ExactGp gp(KernelKind::rbf, {1.0, 10.0, 0.01});
+  gp.fit(xy, z);
+  Eigen::MatrixX2d bad = random_xy(3, 56);
+  bad(2, 0) = std::nan("");
+  EXPECT_THROW(gp.add_points(bad, Eigen::VectorXd::Zero(3)), InputError);
+  EXPECT_THROW(gp.add_points(random_xy(3, 57), Eigen::VectorXd::Zero(2)), InputError);
+  EXPECT_EQ(gp.size(), 20);
+  EXPECT_TRUE(gp.mean(xy).allFinite());
+}
+
+}  // namespace
+}  // namespace touchcloud::gp

@@ -34,16 +34,19 @@ class SurfaceSampler final : public Stage {
   void on_process(StageIO& io, RunContext&) override {
     const auto& surface = io.input<SurfaceModelPtr>("surface");
     if (!surface) throw RunError("no surface model");
-    const Eigen::MatrixX2d xy = area_.lattice_mm(static_cast<int>(resolution_[0]), static_cast<int>(resolution_[1]));
-    const Eigen::VectorXd z = surface->mean(xy);
+    const int nx = static_cast<int>(resolution_[0]), ny = static_cast<int>(resolution_[1]);
+    const Eigen::VectorXd xs = Eigen::VectorXd::LinSpaced(nx, area_.x_mm[0], area_.x_mm[1]);
+    const Eigen::VectorXd ys = Eigen::VectorXd::LinSpaced(ny, area_.y_mm[0], area_.y_mm[1]);
+    const Eigen::MatrixXd z = surface->mean_on_lattice(xs, ys);
+    if (z.rows() != nx || z.cols() != ny) throw RunError("the surface model returned a lattice of the wrong size");
     auto cloud = std::make_shared<PointCloud>();
-    cloud->reserve(static_cast<std::size_t>(xy.rows()));
-    for (Eigen::Index i = 0; i < xy.rows(); ++i) {
-      if (!std::isfinite(z[i]))
-        throw RunError("the surface mean is not finite at (" + std::to_string(xy(i, 0)) + ", " +
-                       std::to_string(xy(i, 1)) + ") mm");
-      cloud->push_back(pcl::PointXYZ(static_cast<float>(xy(i, 0)), static_cast<float>(xy(i, 1)), static_cast<float>(z[i])));
-    }
+    cloud->reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (!std::isfinite(z(i, j)))
+          throw RunError("the surface mean is not finite at (" + std::to_string(xs[i]) + ", " + std::to_string(ys[j]) + ") mm");
+        cloud->push_back(pcl::PointXYZ(static_cast<float>(xs[i]), static_cast<float>(ys[j]), static_cast<float>(z(i, j))));
+      }
     io.output("cloud", CloudConstPtr(cloud));
   }
 };

@@ -18,6 +18,15 @@ class SurfaceModel {
   virtual std::size_t training_size() const = 0;
   // Posterior mean at each row (x, y) of `xy`.
   virtual Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const = 0;
+  // Mean on the lattice xs x ys: result(i, j) at (xs[i], ys[j]). Models with a
+  // faster path than mean() at every point (a separable kernel) override it.
+  virtual Eigen::MatrixXd mean_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const {
+    Eigen::MatrixX2d xy(xs.size() * ys.size(), 2);
+    for (Eigen::Index j = 0; j < ys.size(); ++j)
+      for (Eigen::Index i = 0; i < xs.size(); ++i) xy.row(j * xs.size() + i) << xs[i], ys[j];
+    const Eigen::VectorXd z = mean(xy);
+    return Eigen::Map<const Eigen::MatrixXd>(z.data(), xs.size(), ys.size());
+  }
   // Posterior variance (mm^2) at each row; finite and >= 0.
   virtual Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const = 0;
   // Named hyperparameters with units in the name ("lengthscale_mm").

@@ -1,0 +1,27 @@
+// A fitted GP as the toolkit's SurfaceModel: an immutable snapshot, so a
+// stage holding it never sees the next touch's update.
+#pragma once
+
+#include <memory>
+
+#include "gp/exact_gp.hpp"
+#include "touchcloud/types/surface_model.hpp"
+
+namespace touchcloud {
+
+class GpSurfaceModel final : public SurfaceModel {
+ public:
+  explicit GpSurfaceModel(std::shared_ptr<const gp::ExactGp> gp) : gp_(std::move(gp)) {}
+  std::size_t training_size() const override { return static_cast<std::size_t>(gp_->size()); }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return gp_->mean(xy); }
+  Eigen::MatrixXd mean_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const override {
+    return gp_->mean_on_grid(xs, ys);
+  }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
+  std::map<std::string, double> hyperparameters() const override;
+
+ private:
+  std::shared_ptr<const gp::ExactGp> gp_;
+};
+
+}  // namespace touchcloud

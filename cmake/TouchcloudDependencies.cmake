@@ -5,6 +5,7 @@
 #   yaml-cpp    pipeline and scene files, with line/column for error messages
 #   CLI11       the touchcloud command line
 #   nlohmann_json  summary.json and --json output
+#   nanoflann   exact double-precision KD-tree for scoring (faster to build than FLANN on 1M points)
 #   OpenCV, Ceres, FLANN: looked up by the plugins that need them
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 # PCL pulls in VTK, whose MPI target needs the C language enabled (project()).
@@ -13,6 +14,7 @@ find_package(Boost 1.71 REQUIRED COMPONENTS filesystem)
 find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.9 REQUIRED)
+find_package(nanoflann REQUIRED)
 
 # PCL's config exports plain variables; wrap them once in an imported target.
 if(NOT TARGET touchcloud_pcl)

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
       add_run_verb(app),
       add_validate_verb(app),
       add_plugins_verb(app),
+      add_score_verb(app),
       add_sweep_verb(app),
   };
 

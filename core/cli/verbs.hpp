@@ -13,6 +13,7 @@ using Action = std::function<int()>;  // returns the exit status
 Action* add_run_verb(CLI::App& app);
 Action* add_validate_verb(CLI::App& app);
 Action* add_plugins_verb(CLI::App& app);
+Action* add_score_verb(CLI::App& app);
 Action* add_sweep_verb(CLI::App& app);
 
 // Exit statuses of the CLI contract.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
@@ -35,7 +36,10 @@ void check_pcd_header(const fs::path& file) {
 }  // namespace
 
 CloudFile read_cloud_file(const fs::path& file, NonFinitePoints nonfinite) {
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our messages replace PCL's console noise
+  // Our messages replace PCL's console noise; set once, since clouds may be
+  // read from several threads.
+  static std::once_flag quiet_pcl;
+  std::call_once(quiet_pcl, [] { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); });
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) throw InputError(file.string() + " does not exist or is not a file");
   std::string ext = file.extension().string();

@@ -1,0 +1,387 @@
+// touchcloud score --gt GT EST... [--json]: scores reconstructions against
+// ground truth (a CAD mesh, sampled, or a cloud).
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "score_inputs.hpp"
+#include "touchcloud/scoring/cloud_metrics.hpp"
+#include "touchcloud/scoring/ground_truth.hpp"
+#include "verbs.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct GroundTruthSummary {
+  std::string file;
+  std::string kind;
+  std::size_t points = 0, triangles = 0, dropped_nonfinite = 0;
+  double area_mm2 = 0, spacing_mm = 0, load_time_s = 0;
+  std::string error;  // when it could not be loaded
+};
+
+struct Outcome {
+  ScorePair pair;
+  const GroundTruthSummary* gt = nullptr;
+  std::optional<scoring::CloudScore> score;
+  std::size_t dropped_nonfinite = 0;
+  double time_s = 0;
+  std::string error;
+  bool bad_input = true;  // an InputError (exit 2), or a failure while scoring (exit 1)
+};
+
+// A one-line count on stderr, redrawn a few times a second, only when stderr
+// is a terminal and once the batch has run long enough for it to matter.
+class Progress {
+ public:
+  explicit Progress(std::size_t total) : total_(total) {
+    if (::isatty(STDERR_FILENO) == 1) ticker_ = std::thread([this] { tick(); });
+  }
+  ~Progress() { finish(); }
+  void stage(const std::string& what) {
+    std::lock_guard lock(mutex_);
+    what_ = what;
+  }
+  void done_one() {
+    std::lock_guard lock(mutex_);
+    ++done_;
+  }
+  // Stops redrawing and clears the line, before the results are printed.
+  void finish() {
+    {
+      std::lock_guard lock(mutex_);
+      stopped_ = true;
+    }
+    wake_.notify_all();
+    if (ticker_.joinable()) ticker_.join();
+  }
+
+ private:
+  void tick() {
+    std::unique_lock lock(mutex_);
+    bool drawn = false;
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stopped_; })) {
+      if (seconds_since(start_) < 1.0) continue;
+      std::cerr << "\r\033[Kscored " << done_ << "/" << total_ << " estimates" << (what_.empty() ? "" : "; " + what_)
+                << std::flush;
+      drawn = true;
+    }
+    if (drawn) std::cerr << "\r\033[K" << std::flush;
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::size_t total_, done_ = 0;
+  bool stopped_ = false;
+  std::string what_;
+  Clock::time_point start_ = Clock::now();
+  std::thread ticker_;
+};
+
+struct Options {
+  std::string gt;
+  std::vector<std::string> estimates;
+  bool json = false;
+  std::size_t samples = 0;
+  std::uint64_t seed = 0;
+  std::vector<std::string> metrics{"all"};
+  double fscore_threshold_mm = scoring::kDefaultFscoreThresholdMm;
+  int threads = 0;
+  bool drop_nonfinite = false;
+};
+
+NonFinitePoints nonfinite_rule(const Options& o) {
+  return o.drop_nonfinite ? NonFinitePoints::Drop : NonFinitePoints::Refuse;
+}
+
+// Loads one ground truth; its summary keeps what the report shows.
+scoring::GroundTruth load(const std::string& file, const Options& o, int threads, GroundTruthSummary& summary) {
+  const auto t0 = Clock::now();
+  summary.file = file;
+  scoring::GroundTruthOptions options;
+  options.mesh_samples = o.samples;
+  options.seed = o.seed;
+  options.nonfinite = nonfinite_rule(o);
+  options.threads = threads;
+  scoring::GroundTruth gt = scoring::load_ground_truth(file, options);
+  summary.kind = scoring::to_string(gt.kind);
+  summary.points = gt.points.size();
+  summary.triangles = gt.triangles;
+  summary.area_mm2 = gt.area_mm2;
+  summary.spacing_mm = gt.sample_spacing_mm();
+  summary.dropped_nonfinite = gt.dropped_nonfinite;
+  summary.load_time_s = seconds_since(t0);
+  return gt;
+}
+
+void score_one(Outcome& out, const scoring::GroundTruth& gt, const scoring::ScoreOptions& options, const Options& o) {
+  const auto t0 = Clock::now();
+  try {
+    scoring::Estimate est = scoring::read_estimate(out.pair.estimate, nonfinite_rule(o));
+    out.dropped_nonfinite = est.dropped_nonfinite;
+    out.score = scoring::score_estimate(est.points, gt.points, options);
+  } catch (const InputError& e) {
+    out.error = e.what();
+  } catch (const std::exception& e) {
+    out.error = out.pair.estimate + ": " + e.what();
+    out.bad_input = false;
+  }
+  out.time_s = seconds_since(t0);
+}
+
+// Scores every outcome in `group` against one ground truth: several estimates
+// at once when there are enough of them, else all threads on each one.
+void score_group(std::vector<Outcome*>& group, const scoring::GroundTruth& gt, scoring::ScoreOptions options,
+                 const Options& o, int threads, Progress& progress) {
+  const int workers = static_cast<int>(std::min<std::size_t>(threads, group.size()));
+  options.threads = std::max(1, threads / workers);
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i; (i = next++) < group.size();) {
+      score_one(*group[i], gt, options, o);
+      progress.done_one();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+}
+
+std::string format_fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+nlohmann::ordered_json gt_json(const GroundTruthSummary& g, const Options& o) {
+  nlohmann::ordered_json j = {{"file", g.file}};
+  if (!g.error.empty()) return j;
+  j["kind"] = g.kind;
+  j["points"] = g.points;
+  if (g.kind == "mesh") {
+    j["triangles"] = g.triangles;
+    j["area_mm2"] = g.area_mm2;
+    j["sample_spacing_mm"] = g.spacing_mm;
+    j["seed"] = o.seed;
+  } else if (g.dropped_nonfinite > 0) {
+    j["dropped_nonfinite"] = g.dropped_nonfinite;
+  }
+  j["load_time_s"] = g.load_time_s;
+  return j;
+}
+
+nlohmann::ordered_json outcome_json(const Outcome& r, const Options& o) {
+  nlohmann::ordered_json j = {{"estimate", r.pair.estimate}};
+  j["ground_truth"] = r.gt ? gt_json(*r.gt, o) : nlohmann::ordered_json{{"file", r.pair.ground_truth}};
+  if (!r.score) {
+    j["status"] = "error";
+    j["error"] = r.error;
+    return j;
+  }
+  j["status"] = "ok";
+  j["estimate_points"] = r.score->estimate_points;
+  if (r.dropped_nonfinite > 0) j["dropped_nonfinite"] = r.dropped_nonfinite;
+  nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
+  for (const auto& m : r.score->to_score().metrics) metrics[m.name + (m.unit.empty() ? "" : "_" + m.unit)] = m.value;
+  j["metrics"] = metrics;
+  j["time_s"] = r.time_s;
+  return j;
+}
+
+// Column titles for the metrics in Score order.
+std::string column_title(const Metric& m) {
+  if (m.name == "chamfer_est_to_gt") return "est->gt mm";
+  if (m.name == "chamfer_gt_to_est") return "gt->est mm";
+  if (m.name == "chamfer_symmetric") return "symmetric mm";
+  if (m.name == "hausdorff") return "hausdorff mm";
+  return m.name;
+}
+
+void print_table(const std::vector<Outcome>& outcomes, const std::vector<const GroundTruthSummary*>& gts,
+                 const Options& o, const scoring::ScoreOptions& options) {
+  for (const auto* g : gts) {
+    if (!g->error.empty()) continue;
+    std::cout << "# ground truth " << g->file << ": " << g->kind << ", " << g->points << " points";
+    if (g->kind == "mesh")
+      std::cout << " sampled from " << format_fixed(g->area_mm2, 1) << " mm^2 (mean spacing "
+                << format_fixed(g->spacing_mm, 3) << " mm, seed " << o.seed << ")";
+    std::cout << "\n";
+  }
+  std::size_t name_width = 8, gt_width = 12;
+  for (const auto& r : outcomes) {
+    name_width = std::max(name_width, r.pair.estimate.size());
+    gt_width = std::max(gt_width, r.pair.ground_truth.size());
+  }
+  const bool show_gt = gts.size() > 1;
+
+  // Column titles from a score with every selected metric.
+  scoring::CloudScore shape;
+  shape.metrics = options.metrics;
+  std::vector<std::string> titles;
+  for (const auto& m : shape.to_score().metrics) {
+    if (m.name == "fscore_threshold") continue;
+    titles.push_back(m.name == "fscore" ? "F@" + format_fixed(options.fscore_threshold_mm, 2) + "mm"
+                                        : column_title(m));
+  }
+  std::cout << std::left << std::setw(static_cast<int>(name_width)) << "estimate";
+  if (show_gt) std::cout << "  " << std::setw(static_cast<int>(gt_width)) << "ground truth";
+  std::cout << std::right << std::setw(10) << "points";
+  for (const auto& t : titles) std::cout << std::setw(14) << t;
+  std::cout << "\n";
+
+  for (const auto& r : outcomes) {
+    std::cout << std::left << std::setw(static_cast<int>(name_width)) << r.pair.estimate;
+    if (show_gt) std::cout << "  " << std::setw(static_cast<int>(gt_width)) << r.pair.ground_truth;
+    if (!r.score) {
+      std::cout << "  error: " << r.error << "\n";
+      continue;
+    }
+    std::cout << std::right << std::setw(10) << r.score->estimate_points;
+    for (const auto& m : r.score->to_score().metrics)
+      if (m.name != "fscore_threshold") std::cout << std::setw(14) << format_fixed(m.value, 3);
+    std::cout << "\n";
+  }
+}
+
+int run_score(const Options& o) {
+  if (o.fscore_threshold_mm <= 0)
+    throw InputError("--fscore-threshold must be > 0 mm, not " + format_fixed(o.fscore_threshold_mm, 3));
+  scoring::ScoreOptions options;
+  options.metrics = scoring::MetricSelection::parse(o.metrics);
+  options.fscore_threshold_mm = o.fscore_threshold_mm;
+  const int threads = scoring::resolve_threads(o.threads);
+
+  std::vector<Outcome> outcomes;
+  for (auto& p : expand_score_arguments(o.estimates, o.gt)) {
+    Outcome r;
+    r.pair = p;
+    r.error = p.error;
+    outcomes.push_back(std::move(r));
+  }
+
+  // Group by ground truth, in order of first use; each is loaded once and
+  // dropped before the next.
+  std::vector<std::string> gt_order;
+  std::map<std::string, std::vector<Outcome*>> groups;
+  for (auto& r : outcomes) {
+    if (!r.error.empty()) continue;
+    if (!groups.count(r.pair.ground_truth)) gt_order.push_back(r.pair.ground_truth);
+    groups[r.pair.ground_truth].push_back(&r);
+  }
+  std::map<std::string, GroundTruthSummary> summaries;
+  std::vector<const GroundTruthSummary*> gts;
+  Progress progress(outcomes.size());
+  for (const auto& r : outcomes)
+    if (!r.error.empty()) progress.done_one();
+  for (const auto& file : gt_order) {
+    GroundTruthSummary& summary = summaries[file];
+    gts.push_back(&summary);
+    progress.stage("loading ground truth " + file);
+    std::optional<scoring::GroundTruth> gt;
+    try {
+      gt = load(file, o, threads, summary);
+    } catch (const InputError& e) {
+      // The one ground truth of the command line is the whole input: stop.
+      if (file == o.gt) throw;
+      summary.error = e.what();
+    }
+    for (Outcome* r : groups[file]) r->gt = &summary;
+    if (!gt) {
+      for (Outcome* r : groups[file]) {
+        r->error = "ground truth " + summary.error;
+        progress.done_one();
+      }
+      continue;
+    }
+    progress.stage("");
+    score_group(groups[file], *gt, options, o, threads, progress);
+  }
+
+  progress.finish();
+  std::size_t failed = 0;
+  bool any_bad_input = false;
+  for (const auto& r : outcomes)
+    if (!r.score) {
+      ++failed;
+      any_bad_input = any_bad_input || r.bad_input;
+    }
+  if (o.json) {
+    nlohmann::ordered_json all = nlohmann::ordered_json::array();
+    for (const auto& r : outcomes) all.push_back(outcome_json(r, o));
+    std::cout << all.dump(2) << "\n";
+  } else {
+    print_table(outcomes, gts, o, options);
+  }
+  std::cout << std::flush;
+  if (failed == 0) return kExitOk;
+  for (const auto& r : outcomes)
+    if (!r.score) std::cerr << "touchcloud: error: " << r.error << "\n";
+  std::cerr << "touchcloud: error: " << failed << " of " << outcomes.size() << " estimates could not be scored";
+  if (failed < outcomes.size()) std::cerr << "; the rest were scored";
+  std::cerr << "\n";
+  return any_bad_input ? kExitBadInput : kExitRunFailed;
+}
+
+}  // namespace
+
+Action* add_score_verb(CLI::App& app) {
+  static Options o;
+  static Action action;
+  auto* cmd = app.add_subcommand("score", "Score estimated clouds against ground truth (a CAD mesh or a cloud)");
+  cmd->add_option("--gt", o.gt,
+                  "ground truth: a mesh (.stl, .obj, .ply with faces; sampled uniformly by area) or a cloud "
+                  "(.pcd, .ply); optional when every estimate comes from a manifest that names its own");
+  cmd->add_option("estimates", o.estimates,
+                  "estimated clouds (.pcd, .ply): files, folders (every cloud under them, e.g. a `touchcloud run` "
+                  "output folder), globs, or CSV manifests of 'estimate, ground truth' rows (paths relative to "
+                  "the manifest)")
+      ->required();
+  cmd->add_flag("--json", o.json, "print a JSON array with one record per estimate instead of a table");
+  cmd->add_option("--samples", o.samples,
+                  "points sampled from a mesh ground truth (default 0: 100 per mm^2 of surface, i.e. 0.1 mm mean "
+                  "spacing, at least 100000 and at most 10000000; see docs/scoring.md)")
+      ->capture_default_str();
+  cmd->add_option("--seed", o.seed, "seed of the mesh sampling")->capture_default_str();
+  cmd->add_option("--metrics", o.metrics,
+                  "metrics to compute, comma-separated: chamfer_est_to_gt (the paper's Eq. 11), chamfer_gt_to_est, "
+                  "chamfer_symmetric (mean of both), hausdorff, fscore, or all; chamfer_est_to_gt alone skips "
+                  "the ground truth -> estimate search")
+      ->delimiter(',')
+      ->allow_extra_args(false)  // one list per --metrics, so estimates after it stay estimates
+      ->capture_default_str();
+  cmd->add_option("--fscore-threshold", o.fscore_threshold_mm,
+                  "F-score distance threshold in mm (default: the sensor's 1.5 mm spatial resolution)")
+      ->capture_default_str();
+  cmd->add_option("--threads", o.threads, "threads to use (default 0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--drop-nonfinite", o.drop_nonfinite,
+                "drop points with NaN or infinite coordinates instead of refusing the file");
+  cmd->footer(
+      "Distances are in mm (as the clouds are), computed in double precision.\n"
+      "Exit status: 0 every estimate was scored; 2 bad input: a usage error or an unreadable ground truth "
+      "given with --gt (nothing is scored), or some estimates were unreadable, empty or had no ground truth "
+      "(the others are scored and printed; each failure is reported on stderr and in its record); "
+      "1 some estimates failed while scoring, for another reason.");
+  cmd->callback([] { action = [] { return run_score(o); }; });
+  return &action;
+}
+
+}  // namespace touchcloud::cli

@@ -1,0 +1,67 @@
+// Metrics of an estimated cloud against ground truth, all distances in mm:
+//
+//   chamfer_est_to_gt  mean over estimated points of the distance to the
+//                      nearest ground-truth point (the paper's Eq. 11)
+//   chamfer_gt_to_est  the same, from ground truth to the estimate
+//   chamfer_symmetric  the mean of the two directions
+//   hausdorff          the largest nearest-point distance in either direction
+//   fscore             2PR / (P + R) at a threshold t: precision P is the share
+//                      of estimated points within t of ground truth (d < t),
+//                      recall R the share of ground-truth points within t of
+//                      the estimate; 0 when both are 0
+//
+// Only chamfer_est_to_gt leaves out the ground-truth -> estimate queries,
+// which cost one search per ground-truth point.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "touchcloud/scoring/nearest_point_index.hpp"
+#include "touchcloud/types/score.hpp"
+
+namespace touchcloud::scoring {
+
+// Default F-score threshold: the sensor's spatial resolution (1.5 mm).
+inline constexpr double kDefaultFscoreThresholdMm = 1.5;
+
+struct MetricSelection {
+  bool chamfer_est_to_gt = true;
+  bool chamfer_gt_to_est = true;
+  bool chamfer_symmetric = true;
+  bool hausdorff = true;
+  bool fscore = true;
+
+  bool needs_gt_to_est() const { return chamfer_gt_to_est || chamfer_symmetric || hausdorff || fscore; }
+  bool any() const { return chamfer_est_to_gt || needs_gt_to_est(); }
+  // From names such as {"chamfer_est_to_gt", "hausdorff"} or {"all"}; entries
+  // may hold comma-separated lists. InputError names an unknown metric and
+  // lists the known ones.
+  static MetricSelection parse(const std::vector<std::string>& names);
+  static const std::vector<std::string>& known_names();
+};
+
+struct ScoreOptions {
+  MetricSelection metrics;
+  double fscore_threshold_mm = kDefaultFscoreThresholdMm;
+  int threads = 0;  // 0: all
+};
+
+// The outcome for one estimate; only the selected metrics are set.
+struct CloudScore {
+  MetricSelection metrics;
+  std::size_t estimate_points = 0, ground_truth_points = 0;
+  double chamfer_est_to_gt_mm = 0, chamfer_gt_to_est_mm = 0, chamfer_symmetric_mm = 0, hausdorff_mm = 0;
+  double fscore = 0, precision = 0, recall = 0, fscore_threshold_mm = 0;
+
+  // The selected metrics as named values with units ("mm", or "" for ratios),
+  // in the order listed at the top of this file; the F-score comes with
+  // "precision", "recall" and "fscore_threshold" (mm).
+  Score to_score() const;
+};
+
+// Scores `estimate` (at least one point) against indexed ground truth.
+// InputError for an empty estimate, a non-positive threshold or no metric.
+CloudScore score_estimate(const Points& estimate, const NearestPointIndex& ground_truth, const ScoreOptions& options = {});
+
+}  // namespace touchcloud::scoring

@@ -1,0 +1,58 @@
+// Ground truth for scoring: a point cloud as given, or points sampled
+// uniformly by area from a CAD mesh. Also reads the estimates to score.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "touchcloud/io/cloud_file.hpp"
+#include "touchcloud/scoring/nearest_point_index.hpp"
+
+namespace touchcloud::scoring {
+
+// Default mesh sampling: 100 points per mm^2 (a mean spacing of 0.1 mm), at
+// least kMinMeshSamples and at most kMaxMeshSamples. docs/scoring.md derives
+// the error this leaves in the metrics.
+inline constexpr double kMeshSamplesPerMm2 = 100.0;
+inline constexpr std::size_t kMinMeshSamples = 100'000;
+inline constexpr std::size_t kMaxMeshSamples = 10'000'000;
+
+// The default sample count for a mesh of this area.
+std::size_t default_mesh_samples(double area_mm2);
+
+enum class GroundTruthKind { Cloud, Mesh };
+const char* to_string(GroundTruthKind kind);
+
+struct GroundTruthOptions {
+  std::size_t mesh_samples = 0;  // 0: default_mesh_samples(area)
+  std::uint64_t seed = 0;        // mesh sampling
+  NonFinitePoints nonfinite = NonFinitePoints::Refuse;  // clouds
+  int threads = 0;               // 0: all
+};
+
+struct GroundTruth {
+  std::filesystem::path file;
+  GroundTruthKind kind = GroundTruthKind::Cloud;
+  std::size_t dropped_nonfinite = 0;  // clouds
+  double area_mm2 = 0;                // meshes
+  std::size_t triangles = 0;          // meshes
+  NearestPointIndex points;           // the points scored against, indexed
+
+  // Mean spacing of the samples on a mesh, sqrt(area / samples); 0 for clouds.
+  double sample_spacing_mm() const;
+};
+
+// Reads `file`: .stl, .obj and .ply with faces are meshes (sampled), .pcd and
+// .ply without faces are clouds. Throws InputError naming the file.
+GroundTruth load_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options = {});
+
+struct Estimate {
+  Points points;
+  std::size_t dropped_nonfinite = 0;
+};
+// Reads an estimated cloud (.pcd or .ply); InputError when it is unreadable
+// or empty.
+Estimate read_estimate(const std::filesystem::path& file, NonFinitePoints nonfinite = NonFinitePoints::Refuse);
+
+}  // namespace touchcloud::scoring

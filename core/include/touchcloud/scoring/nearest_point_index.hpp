@@ -1,0 +1,55 @@
+// Nearest-neighbour distances from query points to a fixed set of points, in
+// double precision: the core of every cloud-to-cloud metric. The search is
+// exact (the same distances as a brute-force scan), not approximate.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "touchcloud/types/point_cloud.hpp"
+
+namespace touchcloud::scoring {
+
+using Points = std::vector<Eigen::Vector3d>;  // mm
+
+// PCL stores float; widening to double is exact, and all arithmetic after it
+// is in double.
+Points to_points(const PointCloud& cloud);
+
+// Reorders points so that neighbours in space are neighbours in memory (a
+// Z-order sort); searches from, and indexes over, points in this order run
+// faster, as their memory accesses hit the cache.
+void sort_by_locality(Points& points);
+
+// The number of threads to use: `requested`, or every hardware thread for 0.
+int resolve_threads(int requested);
+
+class NearestPointIndex {
+ public:
+  // Indexes `points` (at least one, all finite; InputError otherwise),
+  // building with up to `threads` threads (0: all).
+  explicit NearestPointIndex(Points points, int threads = 0);
+  NearestPointIndex(NearestPointIndex&&) noexcept;
+  NearestPointIndex& operator=(NearestPointIndex&&) noexcept;
+  ~NearestPointIndex();
+
+  std::size_t size() const;
+  // The indexed points, in the index's own order (close points close
+  // together, which makes searching from them fast); the same for any
+  // thread count.
+  const Points& points() const;
+
+  // Euclidean distance (mm) from each query to its nearest indexed point, in
+  // the queries' order; the result does not depend on `threads`.
+  std::vector<double> nearest_distances(const Points& queries, int threads = 0) const;
+  double nearest_distance(const Eigen::Vector3d& query) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace touchcloud::scoring

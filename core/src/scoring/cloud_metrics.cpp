@@ -1,0 +1,125 @@
+#include "touchcloud/scoring/cloud_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::scoring {
+
+namespace {
+
+// Neumaier's compensated sum: the mean of millions of distances keeps its
+// digits whatever their order.
+double accurate_sum(const std::vector<double>& values) {
+  double sum = 0, carry = 0;
+  for (double v : values) {
+    const double t = sum + v;
+    carry += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
+    sum = t;
+  }
+  return sum + carry;
+}
+
+double mean(const std::vector<double>& values) { return accurate_sum(values) / static_cast<double>(values.size()); }
+
+double share_below(const std::vector<double>& distances, double threshold) {
+  const auto within = std::count_if(distances.begin(), distances.end(), [&](double d) { return d < threshold; });
+  return static_cast<double>(within) / static_cast<double>(distances.size());
+}
+
+std::vector<std::string> split_names(const std::vector<std::string>& entries) {
+  std::vector<std::string> names;
+  for (const auto& entry : entries) {
+    std::stringstream in(entry);
+    std::string name;
+    while (std::getline(in, name, ',')) {
+      name.erase(0, name.find_first_not_of(" \t"));
+      name.erase(name.find_last_not_of(" \t") + 1);
+      if (!name.empty()) names.push_back(name);
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+const std::vector<std::string>& MetricSelection::known_names() {
+  static const std::vector<std::string> names = {"chamfer_est_to_gt", "chamfer_gt_to_est", "chamfer_symmetric",
+                                                 "hausdorff", "fscore"};
+  return names;
+}
+
+MetricSelection MetricSelection::parse(const std::vector<std::string>& entries) {
+  const std::vector<std::string> names = split_names(entries);
+  if (names.empty()) throw InputError("no metric named (known: all, chamfer_est_to_gt, chamfer_gt_to_est, "
+                                      "chamfer_symmetric, hausdorff, fscore)");
+  MetricSelection s{false, false, false, false, false};
+  for (const auto& n : names) {
+    if (n == "all") s = MetricSelection{};
+    else if (n == "chamfer_est_to_gt") s.chamfer_est_to_gt = true;
+    else if (n == "chamfer_gt_to_est") s.chamfer_gt_to_est = true;
+    else if (n == "chamfer_symmetric") s.chamfer_symmetric = true;
+    else if (n == "hausdorff") s.hausdorff = true;
+    else if (n == "fscore") s.fscore = true;
+    else
+      throw InputError("unknown metric '" + n + "' (known: all, chamfer_est_to_gt, chamfer_gt_to_est, "
+                       "chamfer_symmetric, hausdorff, fscore)");
+  }
+  return s;
+}
+
+Score CloudScore::to_score() const {
+  Score s;
+  if (metrics.chamfer_est_to_gt) s.metrics.push_back({"chamfer_est_to_gt", chamfer_est_to_gt_mm, "mm"});
+  if (metrics.chamfer_gt_to_est) s.metrics.push_back({"chamfer_gt_to_est", chamfer_gt_to_est_mm, "mm"});
+  if (metrics.chamfer_symmetric) s.metrics.push_back({"chamfer_symmetric", chamfer_symmetric_mm, "mm"});
+  if (metrics.hausdorff) s.metrics.push_back({"hausdorff", hausdorff_mm, "mm"});
+  if (metrics.fscore) {
+    s.metrics.push_back({"fscore", fscore, ""});
+    s.metrics.push_back({"precision", precision, ""});
+    s.metrics.push_back({"recall", recall, ""});
+    s.metrics.push_back({"fscore_threshold", fscore_threshold_mm, "mm"});
+  }
+  return s;
+}
+
+CloudScore score_estimate(const Points& estimate, const NearestPointIndex& ground_truth, const ScoreOptions& options) {
+  if (estimate.empty()) throw InputError("the estimate has no points");
+  if (!(options.fscore_threshold_mm > 0) || !std::isfinite(options.fscore_threshold_mm))
+    throw InputError("the F-score threshold must be a positive number of mm, not " +
+                     std::to_string(options.fscore_threshold_mm));
+  if (!options.metrics.any()) throw InputError("no metric selected");
+
+  CloudScore s;
+  s.metrics = options.metrics;
+  s.estimate_points = estimate.size();
+  s.ground_truth_points = ground_truth.size();
+  s.fscore_threshold_mm = options.metrics.fscore ? options.fscore_threshold_mm : 0.0;
+
+  // Both directions search from points in locality order, for speed; the
+  // metrics do not depend on the order.
+  Points queries = estimate;
+  sort_by_locality(queries);
+  const std::vector<double> est_to_gt = ground_truth.nearest_distances(queries, options.threads);
+  if (options.metrics.chamfer_est_to_gt) s.chamfer_est_to_gt_mm = mean(est_to_gt);
+  if (!options.metrics.needs_gt_to_est()) return s;
+
+  const std::vector<double> gt_to_est =
+      NearestPointIndex(std::move(queries), options.threads).nearest_distances(ground_truth.points(), options.threads);
+  const double forward = mean(est_to_gt), backward = mean(gt_to_est);
+  if (options.metrics.chamfer_gt_to_est) s.chamfer_gt_to_est_mm = backward;
+  if (options.metrics.chamfer_symmetric) s.chamfer_symmetric_mm = 0.5 * (forward + backward);
+  if (options.metrics.hausdorff)
+    s.hausdorff_mm = std::max(*std::max_element(est_to_gt.begin(), est_to_gt.end()),
+                              *std::max_element(gt_to_est.begin(), gt_to_est.end()));
+  if (options.metrics.fscore) {
+    s.precision = share_below(est_to_gt, options.fscore_threshold_mm);
+    s.recall = share_below(gt_to_est, options.fscore_threshold_mm);
+    s.fscore = s.precision + s.recall > 0 ? 2 * s.precision * s.recall / (s.precision + s.recall) : 0.0;
+  }
+  return s;
+}
+
+}  // namespace touchcloud::scoring

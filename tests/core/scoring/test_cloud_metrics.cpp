@@ -1,0 +1,137 @@
+// Metrics on clouds with distances worked out by hand, agreement with a
+// brute-force reference on random clouds, metric selection and its names.
+#include <gtest/gtest.h>
+
+#include "random_points.hpp"
+#include "touchcloud/error.hpp"
+#include "touchcloud/scoring/cloud_metrics.hpp"
+
+using namespace touchcloud;
+using scoring::MetricSelection;
+using scoring::NearestPointIndex;
+using scoring::Points;
+
+namespace {
+
+// Ground truth: three points on the x axis, 10 mm apart. Estimate: 1 mm above
+// the first, 2 mm above the second. By hand:
+//   est -> gt: 1 and 2, mean 1.5
+//   gt -> est: 1, 2 and sqrt(10^2 + 2^2) = sqrt(104), mean (3 + sqrt(104)) / 3
+//   Hausdorff: sqrt(104)
+//   at 1.5 mm: precision 1/2, recall 1/3, F = 2 (1/6) / (5/6) = 0.4
+const Points kGroundTruth{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}};
+const Points kEstimate{{0, 0, 1}, {10, 0, 2}};
+
+}  // namespace
+
+TEST(CloudMetrics, HandCheckedValues) {
+  const NearestPointIndex gt(kGroundTruth);
+  scoring::ScoreOptions o;
+  o.fscore_threshold_mm = 1.5;
+  const scoring::CloudScore s = scoring::score_estimate(kEstimate, gt, o);
+  EXPECT_EQ(s.estimate_points, 2u);
+  EXPECT_EQ(s.ground_truth_points, 3u);
+  EXPECT_DOUBLE_EQ(s.chamfer_est_to_gt_mm, 1.5);
+  EXPECT_DOUBLE_EQ(s.chamfer_gt_to_est_mm, (3 + std::sqrt(104.0)) / 3);
+  EXPECT_DOUBLE_EQ(s.chamfer_symmetric_mm, 0.5 * (1.5 + (3 + std::sqrt(104.0)) / 3));
+  EXPECT_DOUBLE_EQ(s.hausdorff_mm, std::sqrt(104.0));
+  EXPECT_DOUBLE_EQ(s.precision, 0.5);
+  EXPECT_DOUBLE_EQ(s.recall, 1.0 / 3);
+  EXPECT_DOUBLE_EQ(s.fscore, 0.4);
+  EXPECT_DOUBLE_EQ(s.fscore_threshold_mm, 1.5);
+}
+
+TEST(CloudMetrics, ThresholdIsStrict) {
+  // The 1 mm point sits exactly at a 1 mm threshold: not within it.
+  scoring::ScoreOptions o;
+  o.fscore_threshold_mm = 1.0;
+  const auto s = scoring::score_estimate(kEstimate, NearestPointIndex(kGroundTruth), o);
+  EXPECT_DOUBLE_EQ(s.precision, 0.0);
+  EXPECT_DOUBLE_EQ(s.recall, 0.0);
+  EXPECT_DOUBLE_EQ(s.fscore, 0.0);  // not 0/0
+}
+
+TEST(CloudMetrics, IdenticalCloudsScoreZero) {
+  const Points cloud = test::random_points(2000, 20.0, 9);
+  const auto s = scoring::score_estimate(cloud, NearestPointIndex(cloud));
+  EXPECT_EQ(s.chamfer_est_to_gt_mm, 0.0);
+  EXPECT_EQ(s.chamfer_gt_to_est_mm, 0.0);
+  EXPECT_EQ(s.hausdorff_mm, 0.0);
+  EXPECT_EQ(s.fscore, 1.0);
+}
+
+TEST(CloudMetrics, AgreesWithBruteForceOnRandomClouds) {
+  const Points gt_points = test::random_points(3000, 40.0, 11);
+  const Points est = test::random_points(1200, 50.0, 12);
+  std::vector<double> forward, backward;
+  for (const auto& p : est) forward.push_back(test::brute_force_nearest(p, gt_points));
+  for (const auto& q : gt_points) backward.push_back(test::brute_force_nearest(q, est));
+  double f_sum = 0, b_sum = 0, worst = 0;
+  std::size_t f_in = 0, b_in = 0;
+  const double t = 2.0;
+  for (double d : forward) f_sum += d, worst = std::max(worst, d), f_in += d < t;
+  for (double d : backward) b_sum += d, worst = std::max(worst, d), b_in += d < t;
+  const double precision = double(f_in) / est.size(), recall = double(b_in) / gt_points.size();
+
+  scoring::ScoreOptions o;
+  o.fscore_threshold_mm = t;
+  for (int threads : {1, 2}) {
+    o.threads = threads;
+    const auto s = scoring::score_estimate(est, NearestPointIndex(gt_points), o);
+    EXPECT_LE(test::relative_error(s.chamfer_est_to_gt_mm, f_sum / est.size()), 1e-9);
+    EXPECT_LE(test::relative_error(s.chamfer_gt_to_est_mm, b_sum / gt_points.size()), 1e-9);
+    EXPECT_LE(test::relative_error(s.chamfer_symmetric_mm, 0.5 * (f_sum / est.size() + b_sum / gt_points.size())), 1e-9);
+    EXPECT_LE(test::relative_error(s.hausdorff_mm, worst), 1e-9);
+    EXPECT_DOUBLE_EQ(s.precision, precision);
+    EXPECT_DOUBLE_EQ(s.recall, recall);
+    EXPECT_GT(s.precision, 0.0);  // the threshold splits both sides
+    EXPECT_LT(s.recall, 1.0);
+  }
+}
+
+TEST(CloudMetrics, SelectionLimitsWhatIsComputedAndReported) {
+  scoring::ScoreOptions o;
+  o.metrics = MetricSelection::parse({"chamfer_est_to_gt"});
+  EXPECT_FALSE(o.metrics.needs_gt_to_est());
+  const Score only = scoring::score_estimate(kEstimate, NearestPointIndex(kGroundTruth), o).to_score();
+  ASSERT_EQ(only.metrics.size(), 1u);
+  EXPECT_EQ(only.metrics[0].name, "chamfer_est_to_gt");
+  EXPECT_EQ(only.metrics[0].unit, "mm");
+  EXPECT_DOUBLE_EQ(only.metrics[0].value, 1.5);
+
+  o.metrics = MetricSelection::parse({"hausdorff, fscore"});
+  o.fscore_threshold_mm = 1.5;
+  const Score two = scoring::score_estimate(kEstimate, NearestPointIndex(kGroundTruth), o).to_score();
+  std::vector<std::string> names;
+  for (const auto& m : two.metrics) names.push_back(m.name + "[" + m.unit + "]");
+  EXPECT_EQ(names, (std::vector<std::string>{"hausdorff[mm]", "fscore[]", "precision[]", "recall[]",
+                                             "fscore_threshold[mm]"}));
+  EXPECT_DOUBLE_EQ(two.find("fscore")->value, 0.4);
+  EXPECT_EQ(two.find("chamfer_est_to_gt"), nullptr);
+}
+
+TEST(CloudMetrics, ParseAcceptsAllAndListsAndRefusesUnknownNames) {
+  const MetricSelection all = MetricSelection::parse({"all"});
+  EXPECT_TRUE(all.chamfer_est_to_gt && all.chamfer_gt_to_est && all.chamfer_symmetric && all.hausdorff && all.fscore);
+  const MetricSelection two = MetricSelection::parse({"chamfer_gt_to_est", "fscore"});
+  EXPECT_TRUE(two.chamfer_gt_to_est && two.fscore);
+  EXPECT_FALSE(two.chamfer_est_to_gt || two.hausdorff || two.chamfer_symmetric);
+  try {
+    MetricSelection::parse({"chamfer,hausdorff"});
+    FAIL() << "'chamfer' is not a metric name";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown metric 'chamfer'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("chamfer_est_to_gt"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(MetricSelection::parse({" , "}), InputError);
+}
+
+TEST(CloudMetrics, RefusesAnEmptyEstimateAndABadThreshold) {
+  const NearestPointIndex gt(kGroundTruth);
+  EXPECT_THROW(scoring::score_estimate(Points{}, gt), InputError);
+  scoring::ScoreOptions o;
+  o.fscore_threshold_mm = 0;
+  EXPECT_THROW(scoring::score_estimate(kEstimate, gt, o), InputError);
+  o.fscore_threshold_mm = std::nan("");
+  EXPECT_THROW(scoring::score_estimate(kEstimate, gt, o), InputError);
+}

@@ -1,0 +1,101 @@
+// NearestPointIndex: hand-checkable distances, exact agreement with a brute
+// force scan on random clouds (also across the per-thread slabs), results
+// independent of the thread count, refusals of empty and non-finite input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "random_points.hpp"
+#include "touchcloud/error.hpp"
+
+using namespace touchcloud;
+using scoring::NearestPointIndex;
+using scoring::Points;
+
+TEST(NearestPointIndex, HandCheckedDistances) {
+  const NearestPointIndex index(Points{{0, 0, 0}, {10, 0, 0}});
+  EXPECT_EQ(index.size(), 2u);
+  EXPECT_DOUBLE_EQ(index.nearest_distance({3, 4, 0}), 5.0);    // 3-4-5 to the origin
+  EXPECT_DOUBLE_EQ(index.nearest_distance({10, 0, 2}), 2.0);   // straight above the second point
+  EXPECT_DOUBLE_EQ(index.nearest_distance({5, 0, 0}), 5.0);    // halfway
+  EXPECT_DOUBLE_EQ(index.nearest_distance({10, 0, 0}), 0.0);   // on a point
+  const std::vector<double> d = index.nearest_distances(Points{{-6, 8, 0}, {16, 0, 8}});
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d[0], 10.0);
+  EXPECT_DOUBLE_EQ(d[1], 10.0);
+}
+
+TEST(NearestPointIndex, MatchesBruteForceOnRandomClouds) {
+  // 200k points: enough for two slabs (one per thread), so queries near the
+  // cut between them are covered too; queries reach beyond the box.
+  const Points cloud = test::random_points(200000, 100.0, 1);
+  const Points queries = test::random_points(1500, 130.0, 2);
+  std::vector<double> reference;
+  for (const auto& q : queries) reference.push_back(test::brute_force_nearest(q, cloud));
+  for (int threads : {1, 2, 4}) {
+    const NearestPointIndex index(cloud, threads);
+    const std::vector<double> d = index.nearest_distances(queries, threads);
+    double worst = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) worst = std::max(worst, test::relative_error(d[i], reference[i]));
+    EXPECT_LE(worst, 1e-9) << "threads " << threads;
+  }
+}
+
+TEST(NearestPointIndex, QueriesAlongTheSlabCutMatchBruteForce) {
+  // Points on a line along x: slabs are cut in x; queries sit just beside
+  // the cut, where the nearest point lies in the other slab.
+  Points line;
+  for (int i = 0; i < 300000; ++i) line.emplace_back(i * 0.001, 0.0, 0.0);
+  const NearestPointIndex index(line, 2);
+  Points queries;
+  for (int i = 0; i < 200; ++i) queries.emplace_back(149.9995 + i * 1e-5, 0.0003, 0.0);
+  const std::vector<double> d = index.nearest_distances(queries, 2);
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    EXPECT_LE(test::relative_error(d[i], test::brute_force_nearest(queries[i], line)), 1e-9) << i;
+}
+
+TEST(NearestPointIndex, SameDistancesWhateverTheThreadCount) {
+  const Points cloud = test::random_points(150000, 50.0, 3);
+  const Points queries = test::random_points(5000, 60.0, 4);
+  const std::vector<double> one = NearestPointIndex(cloud, 1).nearest_distances(queries, 1);
+  const std::vector<double> three = NearestPointIndex(cloud, 3).nearest_distances(queries, 3);
+  EXPECT_EQ(one, three);
+}
+
+TEST(NearestPointIndex, HoldsTheSamePointsInOneOrderForAnyThreadCount) {
+  const Points cloud = test::random_points(140000, 10.0, 5);
+  const NearestPointIndex one(cloud, 1), two(cloud, 2);
+  EXPECT_EQ(one.points(), two.points());
+  const auto less = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  Points given = cloud, held = one.points();
+  std::sort(given.begin(), given.end(), less);
+  std::sort(held.begin(), held.end(), less);
+  EXPECT_EQ(given, held);
+}
+
+TEST(NearestPointIndex, LocalityOrderKeepsNeighboursTogether) {
+  // A shuffled 40 x 40 x 40 grid, 1 mm apart: after sorting, consecutive
+  // points are mostly grid neighbours; shuffled, almost never.
+  Points grid;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      for (int k = 0; k < 40; ++k) grid.emplace_back(i, j, k);
+  std::shuffle(grid.begin(), grid.end(), std::mt19937_64(6));
+  const auto mean_step = [](const Points& p) {
+    double sum = 0;
+    for (std::size_t i = 1; i < p.size(); ++i) sum += (p[i] - p[i - 1]).norm();
+    return sum / static_cast<double>(p.size() - 1);
+  };
+  EXPECT_GT(mean_step(grid), 15.0);
+  scoring::sort_by_locality(grid);
+  EXPECT_LT(mean_step(grid), 2.0);
+}
+
+TEST(NearestPointIndex, RefusesEmptyAndNonFiniteInput) {
+  EXPECT_THROW(NearestPointIndex(Points{}), InputError);
+  EXPECT_THROW(NearestPointIndex(Points{{0, 0, 0}, {std::nan(""), 0, 0}}), InputError);
+  const NearestPointIndex index(Points{{0, 0, 0}});
+  EXPECT_THROW(index.nearest_distances(Points{{0, INFINITY, 0}}), InputError);
+}

@@ -1,0 +1,118 @@
+// chamfer: hand-checked metrics in a small pipeline, a series per loop
+// iteration, mesh ground truth, and validation of its parameters.
+#include <cmath>
+
+#include "cloud_files.hpp"
+#include "pipeline_fixture.hpp"
+
+using namespace touchcloud;
+
+namespace {
+
+PointCloud cloud(std::initializer_list<std::array<float, 3>> points) {
+  PointCloud c;
+  for (const auto& p : points) c.push_back(pcl::PointXYZ(p[0], p[1], p[2]));
+  return c;
+}
+
+}  // namespace
+
+class Chamfer : public touchcloud::test::PipelineFixture {
+ protected:
+  void SetUp() override {
+    // Ground truth: three points 10 mm apart on the x axis; the estimate 1 mm
+    // above the first and 2 mm above the second. By hand: est -> gt 1.5 mm,
+    // gt -> est (3 + sqrt(104)) / 3 mm, Hausdorff sqrt(104) mm; at 1.5 mm
+    // precision 1/2, recall 1/3, F-score 0.4.
+    test::save_pcd(dir_ / "gt.pcd", cloud({{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}));
+    test::save_pcd(dir_ / "est.pcd", cloud({{0, 0, 1}, {10, 0, 2}}));
+  }
+  RunResult run(const std::string& yaml) {
+    Pipeline p = load(yaml);
+    RunOptions o;
+    o.quiet = true;
+    return run_pipeline(p, o);
+  }
+  static std::string pipeline(const std::string& chamfer_params) {
+    return "stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: est.pcd}\n"
+           "  - id: score\n    plugin: chamfer\n    params: " + chamfer_params + "\n"
+           "    inputs: {cloud: read.cloud}\n";
+  }
+  static const MetricSeries& series(const RunResult& r, const std::string& key) {
+    const auto it = r.record.metrics.find(key);
+    if (it == r.record.metrics.end()) throw std::runtime_error("no metric " + key);
+    return it->second;
+  }
+};
+
+TEST_F(Chamfer, HandCheckedMetricsOfACloud) {
+  const RunResult r = run(pipeline("{ground_truth: gt.pcd}"));
+  EXPECT_EQ(series(r, "score.chamfer_est_to_gt").values, std::vector<double>{1.5});
+  EXPECT_EQ(series(r, "score.chamfer_est_to_gt").unit, "mm");
+  EXPECT_DOUBLE_EQ(series(r, "score.chamfer_gt_to_est").values.at(0), (3 + std::sqrt(104.0)) / 3);
+  EXPECT_DOUBLE_EQ(series(r, "score.chamfer_symmetric").values.at(0), 0.5 * (1.5 + (3 + std::sqrt(104.0)) / 3));
+  EXPECT_DOUBLE_EQ(series(r, "score.hausdorff").values.at(0), std::sqrt(104.0));
+  EXPECT_DOUBLE_EQ(series(r, "score.fscore").values.at(0), 0.4);
+  EXPECT_DOUBLE_EQ(series(r, "score.precision").values.at(0), 0.5);
+  EXPECT_DOUBLE_EQ(series(r, "score.recall").values.at(0), 1.0 / 3);
+  EXPECT_EQ(series(r, "score.fscore").unit, "");
+  EXPECT_EQ(r.record.metrics.count("score.fscore_threshold"), 0u) << "a parameter, not a result";
+}
+
+TEST_F(Chamfer, ThresholdAndMetricSelection) {
+  const RunResult r = run(pipeline("{ground_truth: gt.pcd, fscore_threshold_mm: 2.5, metrics: 'chamfer_est_to_gt, fscore'}"));
+  EXPECT_DOUBLE_EQ(series(r, "score.fscore").values.at(0), 0.8);  // P = 1, R = 2/3
+  EXPECT_DOUBLE_EQ(series(r, "score.chamfer_est_to_gt").values.at(0), 1.5);
+  EXPECT_EQ(r.record.metrics.count("score.hausdorff"), 0u);
+  EXPECT_EQ(r.record.metrics.count("score.chamfer_gt_to_est"), 0u);
+}
+
+TEST_F(Chamfer, EachLoopIterationAddsToTheSeries) {
+  const RunResult r = run(
+      "stages:\n  - id: touches\n    loop:\n      max_iterations: 3\n      stages:\n"
+      "        - id: read\n          plugin: cloud_reader\n          params: {path: est.pcd}\n"
+      "        - id: score\n          plugin: chamfer\n          params: {ground_truth: gt.pcd}\n"
+      "          inputs: {cloud: read.cloud}\n");
+  EXPECT_EQ(series(r, "score.chamfer_est_to_gt").values, (std::vector<double>{1.5, 1.5, 1.5}));
+}
+
+TEST_F(Chamfer, MeshGroundTruthIsSampledOnce) {
+  test::write_file(dir_ / "square.obj", "v 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\nf 1 2 3 4\n");
+  test::save_pcd(dir_ / "est.pcd", cloud({{50, 50, 2}, {20, 30, 2}, {70, 10, 2}}));
+  const std::string params = "{ground_truth: square.obj, samples: 40000, metrics: chamfer_est_to_gt";
+  const double a = series(run(pipeline(params + ", sample_seed: 3}")), "score.chamfer_est_to_gt").values.at(0);
+  const double b = series(run(pipeline(params + ", sample_seed: 3}")), "score.chamfer_est_to_gt").values.at(0);
+  const double c = series(run(pipeline(params + ", sample_seed: 4}")), "score.chamfer_est_to_gt").values.at(0);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  // 2 mm above a plane sampled 4 per mm^2: 2 mm plus about 0.02 mm.
+  EXPECT_GT(a, 2.0);
+  EXPECT_LT(a, 2.1);
+}
+
+TEST_F(Chamfer, DeclaresACloudInAndAScoreOut) {
+  const auto& schema = registry_.load("chamfer").schema();
+  ASSERT_EQ(schema.inputs.size(), 1u);
+  EXPECT_EQ(schema.inputs[0].name, "cloud");
+  EXPECT_EQ(schema.inputs[0].type, "point_cloud");
+  ASSERT_EQ(schema.outputs.size(), 1u);
+  EXPECT_EQ(schema.outputs[0].name, "score");
+  EXPECT_EQ(schema.outputs[0].type, "score");
+}
+
+TEST_F(Chamfer, BadParametersAreFoundBeforeTheRun) {
+  test::write_file(dir_ / "garbage.stl", "not a mesh\n");
+  const auto first_error = [&](const std::string& params) {
+    const auto diags = errors(pipeline(params));
+    return diags.empty() ? std::string() : diags[0].message;
+  };
+  EXPECT_NE(first_error("{ground_truth: missing.stl}").find("ground_truth"), std::string::npos);
+  const std::string garbage = first_error("{ground_truth: garbage.stl}");
+  EXPECT_NE(garbage.find("garbage.stl"), std::string::npos) << garbage;
+  EXPECT_NE(garbage.find("not a readable stl mesh"), std::string::npos) << garbage;
+  const std::string metric = first_error("{ground_truth: gt.pcd, metrics: 'chamfer'}");
+  EXPECT_NE(metric.find("unknown metric 'chamfer'"), std::string::npos) << metric;
+  EXPECT_NE(first_error("{ground_truth: gt.pcd, fscore_threshold_mm: 0}").find("fscore_threshold_mm"),
+            std::string::npos);
+  EXPECT_NE(first_error("{ground_truth: gt.pcd, samples: -5}").find("samples"), std::string::npos);
+}

@@ -13,21 +13,21 @@ SiliconeRay trace_into_silicone(const RefractivePlate& plate, const Eigen::Vecto
                                 const Eigen::Vector3d& air_direction) {
   const Eigen::Vector3d& n = plate.normal;
   const double h_air = plate.distance_mm - n.dot(centre_mm);
-  if (!(h_air > 0)) return {TraceStatus::CameraNotInAir, {}, {}};
+  if (!(h_air > 0)) return {TraceStatus::CameraNotInAir, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   const double c_air = air_direction.dot(n);
   // Closer to parallel than rounding can tell: the plate is never reached.
-  if (!(c_air > std::numeric_limits<double>::epsilon())) return {TraceStatus::MissesPlate, {}, {}};
+  if (!(c_air > std::numeric_limits<double>::epsilon())) return {TraceStatus::MissesPlate, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   const Eigen::Vector3d on_plate = centre_mm + (h_air / c_air) * air_direction;
 
   const Refraction in_acrylic = refract(air_direction, n, plate.mu_air, plate.mu_acrylic);
-  if (in_acrylic.status != TraceStatus::Ok) return {in_acrylic.status, {}, {}};
+  if (in_acrylic.status != TraceStatus::Ok) return {in_acrylic.status, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   const double c_acrylic = in_acrylic.direction.dot(n);
-  if (!(c_acrylic > 0)) return {TraceStatus::MissesPlate, {}, {}};  // grazing along the face
+  if (!(c_acrylic > 0)) return {TraceStatus::MissesPlate, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};  // grazing along the face
   const Eigen::Vector3d on_gel = on_plate + (plate.thickness_mm / c_acrylic) * in_acrylic.direction;
 
   const Refraction in_silicone = refract(in_acrylic.direction, n, plate.mu_acrylic, plate.mu_silicone);
-  if (in_silicone.status != TraceStatus::Ok) return {in_silicone.status, {}, {}};
-  if (!on_gel.allFinite()) return {TraceStatus::MissesPlate, {}, {}};
+  if (in_silicone.status != TraceStatus::Ok) return {in_silicone.status, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  if (!on_gel.allFinite()) return {TraceStatus::MissesPlate, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   return {TraceStatus::Ok, on_gel, in_silicone.direction};
 }
 
@@ -58,9 +58,9 @@ AirDirection air_direction_to(const RefractivePlate& plate, const Eigen::Vector3
                               const Eigen::Vector3d& point_mm) {
   const Eigen::Vector3d& n = plate.normal;
   const double h_air = plate.distance_mm - n.dot(centre_mm);
-  if (!(h_air > 0)) return {TraceStatus::CameraNotInAir, {}, 0};
+  if (!(h_air > 0)) return {TraceStatus::CameraNotInAir, Eigen::Vector3d::Zero(), 0};
   double h_silicone = n.dot(point_mm) - plate.gel_face_mm();
-  if (!(h_silicone >= -kGelFaceTolerance_mm)) return {TraceStatus::PointNotInSilicone, {}, 0};
+  if (!(h_silicone >= -kGelFaceTolerance_mm)) return {TraceStatus::PointNotInSilicone, Eigen::Vector3d::Zero(), 0};
   h_silicone = std::max(h_silicone, 0.0);
 
   const Eigen::Vector3d offset = point_mm - centre_mm;
@@ -131,7 +131,7 @@ AirDirection air_direction_to(const RefractivePlate& plate, const Eigen::Vector3
       converged = hi - lo <= 4.0 * kEpsilon * hi;
     }
   }
-  if (!converged) return {TraceStatus::NotConverged, {}, iteration};
+  if (!converged) return {TraceStatus::NotConverged, Eigen::Vector3d::Zero(), iteration};
   // n + s e rather than (cos, sin): keeps its digits near grazing.
   return {TraceStatus::Ok, (n + s * e).normalized(), iteration};
 }

@@ -57,9 +57,9 @@ RefractedPixel project_refracted(const StereoRig& rig, StereoSide side, const Ei
 
 SiliconeRay back_project_refracted(const StereoRig& rig, StereoSide side, const Eigen::Vector2d& pixel_px) {
   const PinholeCamera& camera = rig.camera(side);
-  if (!camera.in_view(pixel_px)) return {TraceStatus::OutOfView, {}, {}};
+  if (!camera.in_view(pixel_px)) return {TraceStatus::OutOfView, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   const PixelDirection ray = camera.back_project(pixel_px);
-  if (ray.status != TraceStatus::Ok) return {ray.status, {}, {}};
+  if (ray.status != TraceStatus::Ok) return {ray.status, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   const Eigen::Vector3d direction_left = rig.camera_from_left(side).linear().transpose() * ray.direction;
   return trace_into_silicone(rig.plate(), rig.centre_mm(side), direction_left);
 }

@@ -27,7 +27,7 @@ TriangulatedPoint triangulate_pinhole(const StereoRig& rig, const Eigen::Vector2
                                       const Eigen::Vector2d& right_px, const RayTriangulationOptions& options) {
   const auto air_ray = [&](StereoSide side, const Eigen::Vector2d& pixel_px) {
     const PinholeCamera& camera = rig.camera(side);
-    if (!camera.in_view(pixel_px)) return PixelDirection{TraceStatus::OutOfView, {}};
+    if (!camera.in_view(pixel_px)) return PixelDirection{TraceStatus::OutOfView, Eigen::Vector3d::Zero()};
     PixelDirection ray = camera.back_project(pixel_px);
     ray.direction = rig.camera_from_left(side).linear().transpose() * ray.direction;
     return ray;

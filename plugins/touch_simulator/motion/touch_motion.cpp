@@ -1,0 +1,64 @@
+#include "motion/touch_motion.hpp"
+
+#include <sstream>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::sim {
+
+Eigen::Isometry3d downward_sensor_pose(const Eigen::Vector2d& xy_mm, double height_mm) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(xy_mm.x(), xy_mm.y(), height_mm);
+  pose.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  return pose;
+}
+
+TouchStep TouchMotion::next(const Eigen::Vector2d& target_xy_mm, double start_height_mm, bool previous_stable) {
+  if (!target_xy_mm.allFinite()) throw RunError("the touch target is not finite");
+  if (!touching_) {
+    touching_ = true;
+    ++touch_;
+    frame_ = 0;
+    pressed_ = false;
+    target_ = target_xy_mm;
+    height_ = start_height_mm;
+    first_contact_.reset();
+  } else {
+    if (target_xy_mm != target_) {
+      std::ostringstream s;
+      s << "the touch target moved from (" << target_.x() << ", " << target_.y() << ") to (" << target_xy_mm.x()
+        << ", " << target_xy_mm.y() << ") mm during touch " << touch_ << " (frame " << frame_ + 1
+        << "); a new target is taken only after touch_done";
+      throw RunError(s.str());
+    }
+    ++frame_;
+    pressed_ = previous_stable;
+    height_ -= previous_stable ? robot_.press_depth_mm : step_mm_;
+  }
+  TouchStep step;
+  step.touch = touch_;
+  step.frame_in_touch = frame_;
+  step.pressed = pressed_;
+  step.target_xy_mm = target_;
+  step.base_from_sensor = downward_sensor_pose(target_, height_);
+  return step;
+}
+
+void TouchMotion::observe_overlap(bool overlapping) {
+  if (overlapping && !first_contact_) first_contact_ = height_;
+  if (pressed_) {
+    touching_ = false;  // the recorded frame ends the touch
+    return;
+  }
+  if (travel_past_contact_mm() > robot_.max_contact_depth_mm) {
+    std::ostringstream s;
+    s << "touch " << touch_ << " at (" << target_.x() << ", " << target_.y() << ") mm: the sensor is "
+      << travel_past_contact_mm() << " mm past first contact (frame " << frame_ << " of the touch, sensor origin at z = "
+      << height_ << " mm), beyond max_contact_depth_mm = " << robot_.max_contact_depth_mm
+      << ", and the pipeline reported no stable contact (is input 'contact' wired to a stable-contact stage, "
+         "and does the scene have the 'contact' effect?)";
+    throw RunError(s.str());
+  }
+}
+
+}  // namespace touchcloud::sim

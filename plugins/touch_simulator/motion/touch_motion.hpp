@@ -1,0 +1,57 @@
+// The robot's touch, one camera frame at a time. The sensor faces down
+// (base_from_sensor = translation(x, y, h) * rotation of 180 deg about x);
+// a touch starts with the gel's apex `safe_clearance_mm` above the highest
+// object point under the gel, descends along -z_B by speed / fps per frame
+// and, on the frame after the pipeline reports a stable contact, presses
+// `press_depth_mm` further: that frame is the recorded one, and the touch ends.
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Geometry>
+
+#include "scene/scene.hpp"
+
+namespace touchcloud::sim {
+
+struct TouchStep {
+  int touch = 0;                 // touch number in the run, from 0
+  int frame_in_touch = 0;        // 0 at the safe height
+  bool pressed = false;          // the recorded frame
+  Eigen::Vector2d target_xy_mm = Eigen::Vector2d::Zero();
+  Eigen::Isometry3d base_from_sensor = Eigen::Isometry3d::Identity();
+};
+
+// The pose of the downward-facing sensor with its origin at (x, y, h).
+Eigen::Isometry3d downward_sensor_pose(const Eigen::Vector2d& xy_mm, double height_mm);
+
+class TouchMotion {
+ public:
+  TouchMotion(const RobotSpec& robot, double fps) : robot_(robot), step_mm_(robot.speed_mm_s / fps) {}
+
+  bool touching() const { return touching_; }
+  // The next frame. A touch starts (at `start_height_mm`, the sensor origin's
+  // height) when none is under way; during one, the target must stay the same
+  // (RunError otherwise) and `previous_stable` says whether the pipeline found
+  // the previous frame's contact stable.
+  TouchStep next(const Eigen::Vector2d& target_xy_mm, double start_height_mm, bool previous_stable);
+
+  // Tells the motion whether the gel overlaps the object in the frame just
+  // stepped; RunError when it is more than max_contact_depth_mm past first
+  // contact without a stable contact.
+  void observe_overlap(bool overlapping);
+  double travel_past_contact_mm() const { return first_contact_ ? *first_contact_ - height_ : 0.0; }
+  const RobotSpec& robot() const { return robot_; }
+
+ private:
+  RobotSpec robot_;
+  double step_mm_;
+  bool touching_ = false;
+  int touch_ = -1, frame_ = 0;
+  bool pressed_ = false;
+  Eigen::Vector2d target_ = Eigen::Vector2d::Zero();
+  double height_ = 0;
+  std::optional<double> first_contact_;  // sensor height when the gel first met the object
+};
+
+}  // namespace touchcloud::sim

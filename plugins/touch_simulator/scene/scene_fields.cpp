@@ -1,0 +1,159 @@
+#include "scene/scene_fields.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace touchcloud::sim {
+
+SourceLocation SceneProblems::where(const YAML::Node& node) const {
+  if (!node || node.Mark().is_null()) return {file_.string(), 0, 0};
+  return {file_.string(), node.Mark().line + 1, node.Mark().column + 1};
+}
+
+void SceneProblems::add(const YAML::Node& at, std::string message) { add(where(at), std::move(message)); }
+void SceneProblems::add(SourceLocation where, std::string message) {
+  problems_.push_back({std::move(where), "scene " + std::move(message)});
+}
+void SceneProblems::throw_if_any() const {
+  if (!problems_.empty()) throw InputError(problems_);
+}
+
+namespace {
+
+std::string show(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+std::optional<std::string> breaks(double v, Rule rule) {
+  if (!std::isfinite(v)) return "must be a finite number";
+  switch (rule) {
+    case Rule::Any: return std::nullopt;
+    case Rule::Positive: return v > 0 ? std::nullopt : std::optional<std::string>("must be > 0");
+    case Rule::NonNegative: return v >= 0 ? std::nullopt : std::optional<std::string>("must be >= 0");
+    case Rule::Probability:
+      return v >= 0 && v <= 1 ? std::nullopt : std::optional<std::string>("must be in [0, 1]");
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+SceneFields::SceneFields(YAML::Node node, std::string path, SceneProblems& problems)
+    : node_(std::move(node)), path_(std::move(path)), problems_(problems) {
+  if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
+    problems_.add(node_, (path_.empty() ? std::string("file") : path_) + ": must be a mapping of fields");
+    node_.reset(YAML::Node(YAML::NodeType::Undefined));  // rebinds; operator= would overwrite the document
+  }
+}
+
+SceneFields::~SceneFields() {
+  if (!node_.IsDefined() || !node_.IsMap()) return;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>("");
+    if (read_.count(key)) continue;
+    std::string known;
+    for (const auto& k : read_) known += (known.empty() ? "" : ", ") + k;
+    problems_.add(kv.first, field(key) + ": unknown field (known here: " + known + ")");
+  }
+}
+
+// An empty value (`key:`) counts as absent: the field takes its default.
+bool SceneFields::has(const std::string& key) const {
+  return node_ && node_.IsMap() && node_[key] && !node_[key].IsNull();
+}
+
+YAML::Node SceneFields::raw(const std::string& key) {
+  read_.insert(key);
+  if (!has(key)) return YAML::Node(YAML::NodeType::Undefined);
+  const YAML::Node& map = node_;  // const: reading a key must not add it
+  return map[key];
+}
+
+void SceneFields::error(const std::string& key, const std::string& message) {
+  const YAML::Node at = has(key) ? node_[key] : node_;
+  problems_.add(at, field(key) + ": " + message);
+}
+
+double SceneFields::number(const std::string& key, double fallback, Rule rule) {
+  const YAML::Node n = raw(key);
+  if (!n.IsDefined() || n.IsNull()) return fallback;
+  double v = 0;
+  if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) {
+    error(key, "must be a number");
+    return fallback;
+  }
+  if (auto why = breaks(v, rule)) {
+    error(key, show(v) + " " + *why);
+    return fallback;
+  }
+  return v;
+}
+
+int SceneFields::integer(const std::string& key, int fallback, int min_value) {
+  const YAML::Node n = raw(key);
+  if (!n.IsDefined() || n.IsNull()) return fallback;
+  long long v = 0;
+  if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v)) {
+    error(key, "must be an integer");
+    return fallback;
+  }
+  if (v < min_value || v > 1'000'000'000) {
+    error(key, std::to_string(v) + " must be >= " + std::to_string(min_value));
+    return fallback;
+  }
+  return static_cast<int>(v);
+}
+
+std::uint64_t SceneFields::seed(const std::string& key, std::uint64_t fallback) {
+  const YAML::Node n = raw(key);
+  if (!n.IsDefined() || n.IsNull()) return fallback;
+  std::uint64_t v = 0;
+  if (!n.IsScalar() || !YAML::convert<std::uint64_t>::decode(n, v)) {
+    error(key, "must be a non-negative integer");
+    return fallback;
+  }
+  return v;
+}
+
+std::string SceneFields::text(const std::string& key, const std::string& fallback) {
+  const YAML::Node n = raw(key);
+  if (!n.IsDefined() || n.IsNull()) return fallback;
+  if (!n.IsScalar()) {
+    error(key, "must be a string");
+    return fallback;
+  }
+  return n.Scalar();
+}
+
+std::vector<double> SceneFields::numbers(const std::string& key, std::vector<double> fallback, std::size_t count,
+                                         Rule rule) {
+  const YAML::Node n = raw(key);
+  if (!n.IsDefined() || n.IsNull()) return fallback;
+  if (!n.IsSequence() || n.size() != count) {
+    error(key, "must be a list of " + std::to_string(count) + " numbers");
+    return fallback;
+  }
+  std::vector<double> out;
+  for (std::size_t i = 0; i < count; ++i) {
+    double v = 0;
+    if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], v)) {
+      problems_.add(n[i], field(key) + "[" + std::to_string(i) + "]: must be a number");
+      return fallback;
+    }
+    if (auto why = breaks(v, rule)) {
+      problems_.add(n[i], field(key) + "[" + std::to_string(i) + "]: " + show(v) + " " + *why);
+      return fallback;
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::unique_ptr<SceneFields> SceneFields::child(const std::string& key) {
+  return std::make_unique<SceneFields>(raw(key), field(key), problems_);
+}
+
+}  // namespace touchcloud::sim

@@ -1,0 +1,198 @@
+#include "touch_simulation.hpp"
+
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "render/counter_random.hpp"
+
+namespace touchcloud::sim {
+
+namespace {
+
+// Streams of random draws, one per effect.
+enum DrawStream : std::uint64_t { kPoseNoise = 1, kCentreNoise = 2, kDropout = 3, kImageNoise = 4 };
+
+RenderStyle render_style(const EffectParameters& p) {
+  RenderStyle style;
+  style.background_grey = p.background_grey;
+  style.vignetting = p.vignetting;
+  style.marker_grey = p.marker_grey;
+  return style;
+}
+
+void require_markers_in_view(const ViewPixels& view, const char* side, const Scene& scene, std::size_t markers) {
+  if (!view.empty()) return;
+  throw InputError("scene sensor.cameras: the " + std::string(side) + " camera sees none of the " +
+                       std::to_string(markers) +
+                       " markers on the gel at rest (check sensor_from_left_camera or plate_gap_mm, "
+                       "right_from_left or baseline_mm, and the intrinsics)",
+                   scene.cameras.where);
+}
+
+}  // namespace
+
+std::shared_ptr<const MarkerLayout> gel_marker_layout(const Scene& scene) {
+  using Key = std::tuple<double, double, double, std::uint64_t>;
+  static std::mutex mutex;
+  static std::map<Key, std::shared_ptr<const MarkerLayout>> cache;
+  const Key key{scene.gel.radius_mm(), scene.markers.min_spacing_mm, scene.markers.mean_spacing_mm, scene.markers.seed};
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& layout = cache[key];
+  if (!layout)
+    layout = std::make_shared<const MarkerLayout>(make_marker_layout(
+        scene.gel.radius_mm(), scene.markers.min_spacing_mm, scene.markers.mean_spacing_mm, scene.markers.seed));
+  return layout;
+}
+
+TouchSimulation::TouchSimulation(Scene scene, std::uint64_t noise_seed)
+    : scene_(std::move(scene)), noise_seed_(noise_seed), motion_(scene_.robot, scene_.fps) {
+  const EffectSet& fx = scene_.effects;
+  object_ = make_object_surface(scene_.object);
+  layout_ = gel_marker_layout(scene_);
+  optics_ = std::make_unique<SensorOptics>(scene_, fx.has(Effect::Refraction), fx.has(Effect::LensDistortion));
+  rest_views_.left = optics_->view(StereoSide::Left, layout_->rest_mm, scene_.markers.diameter_mm);
+  rest_views_.right = optics_->view(StereoSide::Right, layout_->rest_mm, scene_.markers.diameter_mm);
+  require_markers_in_view(rest_views_.left, "left", scene_, layout_->rest_mm.size());
+  require_markers_in_view(rest_views_.right, "right", scene_, layout_->rest_mm.size());
+
+  contact_.contact = fx.has(Effect::Contact);
+  contact_.elastic_spread = fx.has(Effect::ElasticSpread);
+  contact_.spread_sigma_mm = scene_.effect_parameters.spread_sigma_mm;
+
+  if (fx.has(Effect::Render)) {
+    const RenderStyle style = render_style(scene_.effect_parameters);
+    renderer_left_ = std::make_unique<MarkerRenderer>(scene_.cameras.left.width_px, scene_.cameras.left.height_px, style);
+    renderer_right_ =
+        std::make_unique<MarkerRenderer>(scene_.cameras.right.width_px, scene_.cameras.right.height_px, style);
+    if (fx.has(Effect::PixelNoise) && scene_.effect_parameters.noise_sigma_grey > 0)
+      image_noise_ = std::make_unique<ImageNoise>(scene_.effect_parameters.noise_sigma_grey);
+  }
+}
+
+double TouchSimulation::safe_height_mm(const Eigen::Vector2d& xy_mm) const {
+  const double r = scene_.gel.radius_mm();
+  return object_->max_height_mm(xy_mm, r) + scene_.robot.safe_clearance_mm + r;
+}
+
+const SimulatedFrame& TouchSimulation::step(const Eigen::Vector2d& target_xy_mm, bool previous_stable) {
+  const double start = motion_.touching() ? 0.0 : safe_height_mm(target_xy_mm);
+  SimulatedFrame& f = frame_;
+  f.touch = motion_.next(target_xy_mm, start, previous_stable);
+  f.index = counts_.frames_simulated;
+  f.timestamp_s = static_cast<double>(f.index) / scene_.fps;
+  press_gel(layout_->rest_mm, f.touch.base_from_sensor, *object_, contact_, f.gel);
+  motion_.observe_overlap(f.gel.markers_overlapping > 0);
+  f.travel_past_contact_mm = motion_.travel_past_contact_mm();
+
+  f.reported_base_from_sensor = f.touch.base_from_sensor;
+  if (scene_.effects.has(Effect::PoseNoise)) {
+    const auto& p = scene_.effect_parameters;
+    const auto frame = static_cast<std::uint64_t>(f.index);
+    const Eigen::Vector2d a = normal_pair_from(draw_key(noise_seed_, {kPoseNoise, frame, 0}));
+    const Eigen::Vector2d b = normal_pair_from(draw_key(noise_seed_, {kPoseNoise, frame, 1}));
+    const Eigen::Vector2d c = normal_pair_from(draw_key(noise_seed_, {kPoseNoise, frame, 2}));
+    const Eigen::Vector3d rotation_rad = Eigen::Vector3d(b.y(), c.x(), c.y()) * (p.pose_sigma_deg * M_PI / 180.0);
+    f.reported_base_from_sensor.translation() += Eigen::Vector3d(a.x(), a.y(), b.x()) * p.pose_sigma_mm;
+    if (rotation_rad.norm() > 0)
+      f.reported_base_from_sensor.linear() =
+          Eigen::AngleAxisd(rotation_rad.norm(), rotation_rad.normalized()).toRotationMatrix() *
+          f.reported_base_from_sensor.linear();
+  }
+  ++counts_.frames_simulated;
+  if (f.touch.pressed) ++counts_.touches_completed;
+  has_frame_ = true;
+  views_.reset();
+  return f;
+}
+
+const SimulatedFrame& TouchSimulation::frame() const {
+  if (!has_frame_) throw RunError("no frame has been simulated yet");
+  return frame_;
+}
+
+const StereoViews& TouchSimulation::views() {
+  if (!views_) {
+    const auto& markers = frame().gel.markers_sensor_mm;
+    views_ = StereoViews{optics_->view(StereoSide::Left, markers, scene_.markers.diameter_mm),
+                         optics_->view(StereoSide::Right, markers, scene_.markers.diameter_mm)};
+    ++counts_.frames_projected;
+  }
+  return *views_;
+}
+
+bool TouchSimulation::dropped(int side, int marker_id) const {
+  if (!scene_.effects.has(Effect::MarkerDropout)) return false;
+  const auto key = draw_key(noise_seed_, {kDropout, static_cast<std::uint64_t>(frame_.index),
+                                          static_cast<std::uint64_t>(side), static_cast<std::uint64_t>(marker_id)});
+  return uniform_from(key) < scene_.effect_parameters.dropout_probability;
+}
+
+MarkerSet TouchSimulation::marker_set() {
+  const StereoViews& v = views();
+  const bool noisy = scene_.effects.has(Effect::PixelNoise) && scene_.effect_parameters.noise_sigma_px > 0;
+  MarkerSet set;
+  set.timestamp_s = frame_.timestamp_s;
+  for (int side = 0; side < 2; ++side) {
+    auto& out = side == 0 ? set.left : set.right;
+    for (const MarkerPixel& m : side == 0 ? v.left : v.right) {
+      if (dropped(side, m.id)) continue;
+      Marker marker;
+      marker.centre_px = m.pixel_px;
+      if (noisy)
+        marker.centre_px += scene_.effect_parameters.noise_sigma_px *
+                            normal_pair_from(draw_key(noise_seed_, {kCentreNoise, static_cast<std::uint64_t>(frame_.index),
+                                                                    static_cast<std::uint64_t>(side),
+                                                                    static_cast<std::uint64_t>(m.id)}));
+      marker.id = m.id;
+      marker.quality = 1.0;
+      out.push_back(marker);
+    }
+  }
+  // Both lists are in id order: pair equal ids.
+  for (std::size_t l = 0, r = 0; l < set.left.size() && r < set.right.size();) {
+    if (set.left[l].id < set.right[r].id) ++l;
+    else if (set.right[r].id < set.left[l].id) ++r;
+    else {
+      set.matches.push_back({static_cast<int>(l), static_cast<int>(r), set.left[l].id});
+      ++l;
+      ++r;
+    }
+  }
+  return set;
+}
+
+std::vector<MarkerDot> TouchSimulation::dots(const ViewPixels& view, int side) const {
+  std::vector<MarkerDot> out;
+  out.reserve(view.size());
+  for (const MarkerPixel& m : view)
+    if (!dropped(side, m.id)) out.push_back({m.pixel_px, m.radius_px});
+  return out;
+}
+
+StereoFrame TouchSimulation::render() {
+  if (!renderer_left_)
+    throw InputError("images were asked for, but the scene " + scene_.file.string() +
+                     " has no 'render' effect: add 'render' to its effects");
+  const StereoViews& v = views();
+  StereoFrame f;
+  f.left = renderer_left_->render(dots(v.left, 0));
+  f.right = renderer_right_->render(dots(v.right, 1));
+  const auto frame = static_cast<std::uint64_t>(frame_.index);
+  // The lens blurs; the sensor then adds its noise.
+  if (scene_.effects.has(Effect::Blur)) {
+    blur_image(f.left, scene_.effect_parameters.blur_sigma_px);
+    blur_image(f.right, scene_.effect_parameters.blur_sigma_px);
+  }
+  if (image_noise_) {
+    image_noise_->apply(f.left, draw_key(noise_seed_, {kImageNoise, frame, 0}));
+    image_noise_->apply(f.right, draw_key(noise_seed_, {kImageNoise, frame, 1}));
+  }
+  f.timestamp_s = frame_.timestamp_s;
+  f.index = frame_.index;
+  f.pose.base_from_sensor = frame_.reported_base_from_sensor;
+  ++counts_.frames_rendered;
+  return f;
+}
+
+}  // namespace touchcloud::sim

@@ -1,0 +1,178 @@
+// touch_simulator: the GelStereo Palm 2.0 and the robot that presses it onto
+// an object, from a scene file. One call is one camera frame; it simulates
+// only the effects the scene names and computes only the outputs some stage
+// reads (no pixels for a pipeline that reads only `tactile`, no images unless
+// `frame` is read).
+#include <sstream>
+
+#include "scene/scene.hpp"
+#include "touch_simulation.hpp"
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/types/contact_state.hpp"
+#include "touchcloud/types/tactile_cloud.hpp"
+#include "touchcloud/types/touch.hpp"
+
+namespace touchcloud {
+
+namespace {
+
+CloudPtr to_cloud(const std::vector<Eigen::Vector3d>& points) {
+  auto cloud = std::make_shared<PointCloud>();
+  cloud->reserve(points.size());
+  for (const auto& p : points) cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                                              static_cast<float>(p.z())));
+  return cloud;
+}
+
+// -1 means "as the scene says"; anything else must obey `rule`.
+double robot_value(double param, double scene_value, const char* name, bool positive) {
+  if (param == -1.0) return scene_value;
+  if (positive ? !(param > 0) : !(param >= 0))
+    throw ParameterError(name, std::to_string(param) + " must be " + (positive ? "> 0" : ">= 0") +
+                                   ", or -1 for the scene's robot." + name);
+  return param;
+}
+
+}  // namespace
+
+class TouchSimulator final : public Stage {
+  std::string scene_file_;
+  double speed_mm_s_ = -1, press_depth_mm_ = -1, safe_clearance_mm_ = -1, max_contact_depth_mm_ = -1;
+  std::vector<double> target_xy_mm_;
+
+  std::unique_ptr<sim::TouchSimulation> sim_;
+  CloudConstPtr rest_cloud_;
+  std::vector<int> marker_ids_;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("scene", scene_file_, std::string()).input_file().doc("scene file (YAML): object, sensor, robot, effects");
+    p.add("speed_mm_s", speed_mm_s_, -1.0).unit("mm/s").at_least(-1).doc("descent speed; -1: the scene's");
+    p.add("press_depth_mm", press_depth_mm_, -1.0).unit("mm").at_least(-1)
+        .doc("further press after stable contact; -1: the scene's");
+    p.add("safe_clearance_mm", safe_clearance_mm_, -1.0).unit("mm").at_least(-1)
+        .doc("gel apex above the highest object point under the gel at the start; -1: the scene's");
+    p.add("max_contact_depth_mm", max_contact_depth_mm_, -1.0).unit("mm").at_least(-1)
+        .doc("travel past first contact without stable contact that fails the run; -1: the scene's");
+    p.add("target_xy_mm", target_xy_mm_, std::vector<double>{}).unit("mm")
+        .doc("[x, y] of the touch in the base frame when input 'target' is not wired");
+  }
+
+  void declare_ports(PortSet& ports) override {
+    ports.optional_input<TouchTarget>("target", "where to touch (base frame); else target_xy_mm");
+    ports.optional_input<ContactState>("contact",
+                                       "the previous frame's contact (wire stable_contact.state@previous)");
+    ports.output<TactileCloudPtr>("tactile", "marker truth in the sensor frame, rest reference, displacements, "
+                                             "reported pose");
+    ports.output<CloudConstPtr>("truth_base", "marker truth in the base frame (true pose), mm");
+    ports.output<MarkerSetPtr>("markers", "marker pixels in both views with ids and matches");
+    ports.output<StereoFramePtr>("frame", "rendered stereo images (needs the scene's 'render' effect)");
+    ports.output<SensorPose>("pose", "the sensor pose the robot reports");
+    ports.output<bool>("touch_done", "true on the recorded frame (stable contact, then the further press)");
+  }
+
+  sim::Scene scene() const {
+    sim::Scene scene = sim::load_scene(scene_file_);
+    sim::RobotSpec& r = scene.robot;
+    r.speed_mm_s = robot_value(speed_mm_s_, r.speed_mm_s, "speed_mm_s", true);
+    r.press_depth_mm = robot_value(press_depth_mm_, r.press_depth_mm, "press_depth_mm", false);
+    r.safe_clearance_mm = robot_value(safe_clearance_mm_, r.safe_clearance_mm, "safe_clearance_mm", false);
+    r.max_contact_depth_mm = robot_value(max_contact_depth_mm_, r.max_contact_depth_mm, "max_contact_depth_mm", true);
+    return scene;
+  }
+
+  void on_check(RunContext&) override {
+    if (!target_xy_mm_.empty() && target_xy_mm_.size() != 2)
+      throw ParameterError("target_xy_mm", "must be empty or [x, y]");
+    sim::make_object_surface(scene().object);  // an unreadable mesh is bad input, found by `validate`
+  }
+
+  void on_configure(RunContext& ctx) override {
+    on_check(ctx);
+    sim_ = std::make_unique<sim::TouchSimulation>(scene(), ctx.rng()());
+    const auto& layout = sim_->markers();
+    rest_cloud_ = to_cloud(layout.rest_mm);
+    marker_ids_.resize(layout.rest_mm.size());
+    for (std::size_t i = 0; i < marker_ids_.size(); ++i) marker_ids_[i] = static_cast<int>(i);
+    ctx.note("effects", sim_->scene().effects.str());
+    std::ostringstream s;
+    s << layout.rest_mm.size() << " markers (mean spacing " << layout.mean_spacing_mm << " mm, min "
+      << layout.min_spacing_mm << " mm); seen at rest: left " << sim_->rest_views().left.size() << ", right "
+      << sim_->rest_views().right.size() << ", both " << seen_by_both() << "; effects: " << sim_->scene().effects.str();
+    ctx.log(s.str());
+  }
+
+  // Markers of the gel at rest that both cameras see.
+  std::size_t seen_by_both() const {
+    const auto& left = sim_->rest_views().left;
+    const auto& right = sim_->rest_views().right;
+    std::size_t both = 0;
+    for (std::size_t l = 0, r = 0; l < left.size() && r < right.size();) {
+      if (left[l].id < right[r].id) ++l;
+      else if (right[r].id < left[l].id) ++r;
+      else ++both, ++l, ++r;
+    }
+    return both;
+  }
+
+  Eigen::Vector2d target(const StageIO& io) const {
+    if (const auto* t = io.optional_input<TouchTarget>("target")) {
+      if (!target_xy_mm_.empty())
+        throw ParameterError("target_xy_mm", "is set, but input 'target' is wired too: use one");
+      return t->xy_mm;
+    }
+    if (target_xy_mm_.size() != 2)
+      throw InputError("no touch target: wire input 'target' (a touch_target) or set target_xy_mm: [x, y]");
+    return {target_xy_mm_[0], target_xy_mm_[1]};
+  }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto* contact = io.optional_input<ContactState>("contact");
+    const sim::SimulatedFrame& f = sim_->step(target(io), contact && contact->stable);
+    SensorPose pose;
+    pose.base_from_sensor = f.reported_base_from_sensor;
+
+    if (io.wants("tactile")) {
+      auto tactile = std::make_shared<TactileCloud>();
+      tactile->points = to_cloud(f.gel.markers_sensor_mm);
+      tactile->reference = rest_cloud_;
+      tactile->displacement_mm.resize(f.gel.markers_sensor_mm.size());
+      for (std::size_t i = 0; i < tactile->displacement_mm.size(); ++i)
+        tactile->displacement_mm[i] = (f.gel.markers_sensor_mm[i] - sim_->markers().rest_mm[i]).norm();
+      tactile->marker_ids = marker_ids_;
+      tactile->timestamp_s = f.timestamp_s;
+      tactile->pose = pose;
+      io.output<TactileCloudPtr>("tactile", tactile);
+    }
+    if (io.wants("truth_base")) io.output<CloudConstPtr>("truth_base", to_cloud(f.gel.markers_base_mm));
+    if (io.wants("markers")) io.output<MarkerSetPtr>("markers", std::make_shared<MarkerSet>(sim_->marker_set()));
+    if (io.wants("frame")) io.output<StereoFramePtr>("frame", std::make_shared<StereoFrame>(sim_->render()));
+    if (io.wants("pose")) io.output("pose", pose);
+    if (io.wants("touch_done")) io.output("touch_done", f.touch.pressed);
+
+    if (f.touch.pressed) {
+      ctx.metric("touch_frames", f.touch.frame_in_touch + 1, "frames");
+      ctx.metric("press_travel_mm", f.travel_past_contact_mm, "mm");
+    }
+  }
+
+  void on_finish(RunContext& ctx) override {
+    if (!sim_) return;
+    const auto& c = sim_->counts();
+    ctx.metric("frames_simulated", static_cast<double>(c.frames_simulated), "frames");
+    ctx.metric("frames_projected", static_cast<double>(c.frames_projected), "frames");
+    ctx.metric("frames_rendered", static_cast<double>(c.frames_rendered), "frames");
+    ctx.metric("touches", static_cast<double>(c.touches_completed), "touches");
+    const auto& layout = sim_->markers();
+    ctx.metric("markers", static_cast<double>(layout.rest_mm.size()), "markers");
+    ctx.metric("marker_mean_spacing_mm", layout.mean_spacing_mm, "mm");
+    ctx.metric("marker_min_spacing_mm", layout.min_spacing_mm, "mm");
+    ctx.metric("markers_seen_left", static_cast<double>(sim_->rest_views().left.size()), "markers");
+    ctx.metric("markers_seen_right", static_cast<double>(sim_->rest_views().right.size()), "markers");
+    ctx.metric("markers_seen_both", static_cast<double>(seen_by_both()), "markers");
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::TouchSimulator, "touch_simulator",
+                  "Simulates the GelStereo Palm 2.0 touching an object: marker truth, pixels or images, per frame")

@@ -1,0 +1,38 @@
+// Scenes written on the fly for the simulator's tests: a flat object (a plane
+// 10 mm above the table) under the default sensor, with chosen effects.
+#pragma once
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+#include "touch_simulation.hpp"
+
+namespace touchcloud::test {
+
+inline constexpr double kPlaneHeightMm = 10.0;
+
+// A scene file: the plane, then `extra` YAML lines (top-level), with `effects`
+// as the effects list, e.g. "[contact, refraction]".
+std::filesystem::path write_plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra = "",
+                                        const std::string& name = "scene.yaml");
+sim::Scene plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra = "");
+
+// Steps a touch at `xy` without a stable-contact verdict until the sensor is
+// `travel_mm` past first contact; returns the last frame.
+const sim::SimulatedFrame& press_into(sim::TouchSimulation& sim, const Eigen::Vector2d& xy, double travel_mm);
+
+// The InputError message `f` throws, or "" (with a test failure) when it does not.
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+}  // namespace touchcloud::test

@@ -1,0 +1,185 @@
+// The touch_simulator stage in pipelines: a touch on a plane at known height
+// with stable_contact deciding, what gets computed for which outputs, seeds,
+// overrides and failures.
+#include <cmath>
+
+#include "cloud_files.hpp"
+#include "pipeline_fixture.hpp"
+
+using namespace touchcloud;
+
+namespace {
+
+// The plane is 10 mm up; the gel's apex starts 2.1 mm above it and descends
+// 0.2 mm per frame (6 mm/s at 30 fps). Frame k overlaps by 0.2 k - 2.1 mm
+// (less the top marker's few microns below the apex): first contact at k = 11,
+// more than 2 mm from k = 21, stable (counter > 10) at k = 31, and frame 32
+// is pressed 1.5 mm further: 5.6 mm into the plane, 5.5 mm past first contact.
+constexpr int kFramesPerTouch = 33;
+constexpr double kPenetrationMm = 5.6, kGelRadiusMm = 32.5;
+
+std::string loop(const std::string& sim_params, const std::string& sim_inputs, const std::string& more_stages,
+                 int max_iterations = 200) {
+  return "pipeline: plane_touch\n"
+         "stages:\n"
+         "  - id: touch\n"
+         "    loop:\n"
+         "      max_iterations: " + std::to_string(max_iterations) + "\n"
+         "      until: sim.touch_done\n"
+         "      stages:\n"
+         "        - id: sim\n"
+         "          plugin: touch_simulator\n"
+         "          params: {scene: scene.yaml" + sim_params + "}\n" +
+         (sim_inputs.empty() ? "" : "          inputs: {" + sim_inputs + "}\n") + more_stages;
+}
+
+const std::string kContactStage =
+    "        - id: contact\n"
+    "          plugin: stable_contact\n"
+    "          inputs: {tactile: sim.tactile}\n";
+const std::string kTarget = ", target_xy_mm: [3, -2]";
+const std::string kFromContact = "contact: contact.state@previous";
+const std::string kWriteTruth =
+    "  - id: write\n"
+    "    plugin: cloud_writer\n"
+    "    params: {path: truth.pcd}\n"
+    "    inputs: {cloud: sim.truth_base}\n";
+const std::string kSink =
+    "        - id: sink\n"
+    "          plugin: test_sim_sink\n"
+    "          inputs: {frame: sim.frame, markers: sim.markers, pose: sim.pose}\n";
+
+class TouchPipeline : public touchcloud::test::PipelineFixture {
+ protected:
+  void scene(const std::string& effects) {
+    write("object: {analytic: plane, height_mm: 10}\nrobot: {safe_clearance_mm: 2.1}\neffects: " + effects + "\n",
+          "scene.yaml");
+  }
+  RunResult run(const std::string& yaml, std::uint64_t seed = 1, const std::vector<Override>& overrides = {}) {
+    Pipeline p = load(yaml, overrides);
+    RunOptions o;
+    o.quiet = true;
+    o.seed = seed;
+    o.out_dir = dir_ / ("out" + std::to_string(runs_++));
+    last_out_ = o.out_dir;
+    return run_pipeline(p, o);
+  }
+  static double metric(const RunResult& r, const std::string& name) {
+    auto it = r.record.metrics.find(name);
+    if (it == r.record.metrics.end()) {
+      ADD_FAILURE() << "no metric " << name;
+      return -1;
+    }
+    return it->second.values.back();
+  }
+  int runs_ = 0;
+  std::filesystem::path last_out_;
+};
+
+}  // namespace
+
+TEST_F(TouchPipeline, APlaneTouchSettlesWhereEquationsTwoAndThreeSayAndRecordsMarkersOnThePlane) {
+  scene("[contact]");
+  const RunResult r = run(loop(kTarget, kFromContact, kContactStage) + kWriteTruth);
+  EXPECT_EQ(r.loop_iterations.at(0).second, kFramesPerTouch);
+  EXPECT_EQ(metric(r, "sim.frames_simulated"), kFramesPerTouch);
+  EXPECT_EQ(metric(r, "sim.touches"), 1);
+  EXPECT_EQ(metric(r, "sim.touch_frames"), kFramesPerTouch);
+  EXPECT_NEAR(metric(r, "sim.press_travel_mm"), 5.5, 1e-9);
+  EXPECT_EQ(metric(r, "contact.frames_to_stable"), kFramesPerTouch - 1);
+
+  // The recorded frame: markers in contact lie on the plane, inside the cap
+  // the rest gel would reach below it, and no marker lies below the plane.
+  const PointCloud truth = touchcloud::test::load_cloud(last_out_ / "truth.pcd");
+  const double cap_radius = std::sqrt(2 * kGelRadiusMm * kPenetrationMm - kPenetrationMm * kPenetrationMm);
+  std::size_t on_plane = 0;
+  for (const auto& p : truth) {
+    ASSERT_GE(p.z, 10.0 - 1e-4);
+    if (p.z < 10.0 + 1e-4) {
+      ++on_plane;
+      EXPECT_LE(std::hypot(p.x - 3.0, p.y + 2.0), cap_radius + 1e-3);
+    }
+  }
+  // The cap holds its share of the dome's area, p / R, of the evenly spread markers.
+  EXPECT_NEAR(static_cast<double>(on_plane) / truth.size(), kPenetrationMm / kGelRadiusMm, 0.015);
+}
+
+TEST_F(TouchPipeline, APipelineThatReadsOnlyTactileCloudsRendersAndProjectsNothing) {
+  scene("[contact, refraction, lens_distortion, render, pixel_noise, blur, marker_dropout]");
+  const RunResult r = run(loop(kTarget, kFromContact, kContactStage) + kWriteTruth);
+  EXPECT_EQ(metric(r, "sim.frames_simulated"), kFramesPerTouch);
+  EXPECT_EQ(metric(r, "sim.frames_projected"), 0);
+  EXPECT_EQ(metric(r, "sim.frames_rendered"), 0);
+  const std::string summary = touchcloud::test::read_file(last_out_ / "summary.json");
+  EXPECT_NE(summary.find("\"sim.frames_rendered\""), std::string::npos);
+}
+
+TEST_F(TouchPipeline, APipelineThatReadsImagesGetsOneStereoFramePerCameraFrame) {
+  scene("[contact, refraction, render]");
+  const RunResult r = run(loop(kTarget, kFromContact, kContactStage + kSink));
+  EXPECT_EQ(metric(r, "sim.frames_rendered"), kFramesPerTouch);
+  EXPECT_EQ(metric(r, "sim.frames_projected"), kFramesPerTouch);
+  EXPECT_EQ(metric(r, "sink.frames"), kFramesPerTouch);
+  EXPECT_GT(metric(r, "sink.last_matches"), 1000);
+  EXPECT_GT(metric(r, "sink.last_mean_grey"), 100);
+}
+
+TEST_F(TouchPipeline, ReadingImagesFromASceneWithoutRenderIsBadInput) {
+  scene("[contact]");
+  try {
+    run(loop(kTarget, kFromContact, kContactStage + kSink));
+    FAIL() << "images without the render effect";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no 'render' effect"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(TouchPipeline, SeededRunsReproduceBitForBit) {
+  scene("[contact, refraction, render, pixel_noise, blur, marker_dropout, pose_noise]");
+  const std::string yaml = loop(kTarget, kFromContact, kContactStage + kSink);
+  const RunResult a = run(yaml, 3), b = run(yaml, 3), c = run(yaml, 4);
+  for (const char* m : {"sink.image_hash", "sink.marker_hash", "sink.pose_hash"}) {
+    EXPECT_EQ(metric(a, m), metric(b, m)) << m;
+    EXPECT_NE(metric(a, m), metric(c, m)) << m;
+  }
+}
+
+TEST_F(TouchPipeline, ATouchWithoutStableContactFailsSayingWhere) {
+  scene("[]");  // no contact effect: the markers never move, nothing settles
+  try {
+    run(loop(kTarget, kFromContact, kContactStage));
+    FAIL() << "the touch went on forever";
+  } catch (const RunError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("touch 0 at (3, -2) mm"), std::string::npos) << m;
+    EXPECT_NE(m.find("past first contact"), std::string::npos) << m;
+    EXPECT_NE(m.find("max_contact_depth_mm = 10"), std::string::npos) << m;
+  }
+}
+
+TEST_F(TouchPipeline, RobotParametersOverrideTheScene) {
+  scene("[contact]");
+  const std::string yaml = loop(kTarget, kFromContact, kContactStage);
+  const RunResult r = run(yaml, 1, {{"sim.press_depth_mm", "3.0"}});
+  EXPECT_NEAR(metric(r, "sim.press_travel_mm"), 7.0, 1e-9);
+  try {
+    run(yaml, 1, {{"sim.press_depth_mm", "-0.5"}});
+    FAIL() << "a negative press depth was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("press_depth_mm"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(TouchPipeline, NeedsATargetAndAReadableScene) {
+  scene("[contact]");
+  try {
+    run(loop("", kFromContact, kContactStage));
+    FAIL() << "no target";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no touch target"), std::string::npos) << e.what();
+  }
+  write("object: {mesh: absent.ply}\n", "scene.yaml");
+  const auto diagnostics = errors(loop(kTarget, kFromContact, kContactStage));
+  ASSERT_FALSE(diagnostics.empty());
+  EXPECT_TRUE(touchcloud::test::mentions(diagnostics[0], "object.mesh")) << diagnostics[0].str();
+}

@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
-build/bin/touchcloud run pipelines/downsample_cloud.yaml --seed 1 --out out/main "$@"
+build/bin/touchcloud run pipelines/fox_mask_active.yaml --seed 1 --out out/main "$@"

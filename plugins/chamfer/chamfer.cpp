@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "touchcloud/plugin.hpp"
+#include "convergence.hpp"
 #include "touchcloud/scoring/cloud_metrics.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
 #include "touchcloud/types/point_cloud.hpp"
@@ -86,8 +87,19 @@ class Chamfer final : public Stage {
     Score score = result.to_score();
     for (const auto& m : score.metrics)
       if (m.name != "fscore_threshold") ctx.metric(m.name, m.value, m.unit);  // a parameter, not a result
+    if (const Metric* eq11 = score.find("chamfer_est_to_gt")) history_.push_back(eq11->value);
     io.output("score", std::move(score));
   }
+
+  // Over a loop of touches: the final Eq. 11 value and the touch count after
+  // which it stays within 5 % of it.
+  void on_finish(RunContext& ctx) override {
+    if (history_.empty()) return;
+    ctx.metric("final_chamfer_mm", history_.back(), "mm");
+    ctx.metric("convergence_touches", convergence_touches(history_, 0.05), "touches");
+  }
+
+  std::vector<double> history_;
 };
 
 }  // namespace touchcloud

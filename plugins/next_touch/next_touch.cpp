@@ -10,6 +10,7 @@ class NextTouch final : public Stage {
   std::string strategy_;
   int initial_random_ = 4;
   int oversample_ = 1;
+  bool revisit_ = false;
   WorkspaceGrid grid_;
   std::set<int> touched_;
   int calls_ = 0;
@@ -23,6 +24,10 @@ class NextTouch final : public Stage {
         .doc("greatest posterior variance (Eq. 10), or a random cell (the w/o SSG baseline)");
     p.add("initial_random", initial_random_, 4).at_least(1).unit("touches").doc("random touches before the model chooses");
     p.add("oversample", oversample_, 1).range(1, 16).doc("variance candidates per grid cell and axis (snapped to the cell)");
+    // The palm's contact need not lie under the cell centre: a touch can add
+    // nothing new there, leave the variance as it was, and Eq. 10 would then
+    // choose the same cell for ever.
+    p.add("revisit", revisit_, false).doc("allow a cell to be touched again (false: each cell at most once while any is left)");
   }
   void declare_ports(PortSet& ports) override {
     ports.optional_input<SurfaceModelPtr>("surface", "the model fitted so far (wire as fit.surface@previous)");
@@ -45,7 +50,7 @@ class NextTouch final : public Stage {
     if (calls_ < initial_random_ || strategy_ == "random" || !surface || !*surface) {
       target.grid_index = random_cell(grid_, touched_, ctx.rng());
     } else {
-      const VarianceChoice choice = max_variance_cell(**surface, grid_, oversample_);
+      const VarianceChoice choice = max_variance_cell(**surface, grid_, oversample_, revisit_ ? std::set<int>{} : touched_);
       target.grid_index = choice.cell;
       target.exploratory = true;
       ctx.metric("chosen_variance", choice.variance_mm2, "mm^2");

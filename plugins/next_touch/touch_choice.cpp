@@ -7,7 +7,8 @@
 
 namespace touchcloud {
 
-VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGrid& grid, int oversample) {
+VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGrid& grid, int oversample,
+                                 const std::set<int>& avoid) {
   // Candidates at the centres of the cells of a finer grid.
   WorkspaceGrid fine = grid;
   fine.cells_x *= oversample;
@@ -17,12 +18,14 @@ VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGri
   if (variance.size() != candidates.rows())
     throw RunError("the surface model returned " + std::to_string(variance.size()) + " variances for " +
                    std::to_string(candidates.rows()) + " positions");
-  Eigen::Index best = 0;
+  const bool all_avoided = static_cast<int>(avoid.size()) >= grid.cells();
+  Eigen::Index best = -1;
   for (Eigen::Index i = 0; i < variance.size(); ++i) {
     if (!std::isfinite(variance[i]) || variance[i] < 0)
       throw RunError("the surface model gave variance " + std::to_string(variance[i]) + " at (" +
                      std::to_string(candidates(i, 0)) + ", " + std::to_string(candidates(i, 1)) + ") mm");
-    if (variance[i] > variance[best]) best = i;
+    if (!all_avoided && avoid.count(grid.nearest_cell(candidates.row(i).transpose()))) continue;
+    if (best < 0 || variance[i] > variance[best]) best = i;
   }
   return {grid.nearest_cell(candidates.row(best).transpose()), variance[best]};
 }

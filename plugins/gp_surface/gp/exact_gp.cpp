@@ -141,20 +141,28 @@ Eigen::Index ExactGp::query_block() const {
   return std::max<Eigen::Index>(1, options_.query_block_doubles / std::max<Eigen::Index>(1, n_));
 }
 
-Eigen::VectorXd ExactGp::mean(const Eigen::MatrixX2d& xy_mm) const {
-  check_finite(xy_mm, "query point");
+void ExactGp::for_each_cross_block(const Eigen::MatrixX2d& xy_mm, const CrossBlockFunction& f) const {
   const Eigen::Index m = xy_mm.rows();
-  Eigen::VectorXd out = Eigen::VectorXd::Constant(m, centring_.z_mm);
-  if (n_ == 0 || m == 0) return out;
+  if (n_ == 0 || m == 0) return;
   const Eigen::Index block = std::min(query_block(), m);
   Eigen::MatrixXd k_cross(n_, block);
   for (Eigen::Index b0 = 0; b0 < m; b0 += block) {
     const Eigen::Index bs = std::min(block, m - b0);
     const Eigen::VectorXd qx = xy_mm.col(0).segment(b0, bs).array() - centring_.x_mm;
     const Eigen::VectorXd qy = xy_mm.col(1).segment(b0, bs).array() - centring_.y_mm;
-    kernel_.fill_cross(x_, y_, qx, qy, k_cross.leftCols(bs));
-    out.segment(b0, bs).noalias() += k_cross.leftCols(bs).transpose() * alpha_;
+    auto kb = k_cross.leftCols(bs);
+    kernel_.fill_cross(x_, y_, qx, qy, kb);
+    f(b0, kb);
   }
+}
+
+Eigen::VectorXd ExactGp::mean(const Eigen::MatrixX2d& xy_mm) const {
+  check_finite(xy_mm, "query point");
+  const Eigen::Index m = xy_mm.rows();
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(m, centring_.z_mm);
+  for_each_cross_block(xy_mm, [&](Eigen::Index b0, CrossBlock kb) {
+    out.segment(b0, kb.cols()).noalias() += kb.transpose() * alpha_;
+  });
   return out;
 }
 
@@ -193,17 +201,10 @@ Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* cl
   Eigen::VectorXd out = Eigen::VectorXd::Constant(m, prior);
   std::size_t clamped = 0;
   if (n_ > 0 && m > 0) {
-    const Eigen::Index block = std::min(query_block(), m);
-    Eigen::MatrixXd k_cross(n_, block);
-    for (Eigen::Index b0 = 0; b0 < m; b0 += block) {
-      const Eigen::Index bs = std::min(block, m - b0);
-      const Eigen::VectorXd qx = xy_mm.col(0).segment(b0, bs).array() - centring_.x_mm;
-      const Eigen::VectorXd qy = xy_mm.col(1).segment(b0, bs).array() - centring_.y_mm;
-      auto kb = k_cross.leftCols(bs);
-      kernel_.fill_cross(x_, y_, qx, qy, kb);
+    for_each_cross_block(xy_mm, [&](Eigen::Index b0, CrossBlock kb) {
       factor().triangularView<Eigen::Lower>().solveInPlace(kb);
-      out.segment(b0, bs) -= kb.colwise().squaredNorm().transpose();
-    }
+      out.segment(b0, kb.cols()) -= kb.colwise().squaredNorm().transpose();
+    });
     for (Eigen::Index i = 0; i < m; ++i) {
       if (std::isnan(out[i])) {
         std::ostringstream msg;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include <Eigen/Core>
@@ -79,6 +80,11 @@ class ExactGp {
   void refactorise();  // from x_, y_, z_ with the jitter schedule
   void ensure_capacity(Eigen::Index points);
   Eigen::Index query_block() const;
+  // Calls f(first query, K(train, block)) over `xy_mm` in blocks of
+  // query_block() columns, so memory stays n x block whatever the query count.
+  using CrossBlock = Eigen::Block<Eigen::MatrixXd, Eigen::Dynamic, Eigen::Dynamic, true>;
+  using CrossBlockFunction = std::function<void(Eigen::Index, CrossBlock)>;
+  void for_each_cross_block(const Eigen::MatrixX2d& xy_mm, const CrossBlockFunction& f) const;
   auto factor() { return storage_.topLeftCorner(n_, n_); }
   auto factor() const { return storage_.topLeftCorner(n_, n_); }
 

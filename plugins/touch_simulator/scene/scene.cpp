@@ -19,10 +19,6 @@ const char* to_string(ObjectKind kind) {
   return "?";
 }
 
-Eigen::Vector2d Workspace::cell_centre_mm(int index) const {
-  const int ix = index % grid_x, iy = index / grid_x;
-  return {x_mm[0] + (ix + 0.5) * (x_mm[1] - x_mm[0]) / grid_x, y_mm[0] + (iy + 0.5) * (y_mm[1] - y_mm[0]) / grid_y};
-}
 
 namespace {
 
@@ -79,12 +75,12 @@ void read_workspace(SceneFields& f, Workspace& w) {
   if (!(y[0] < y[1])) f.error("y_mm", "must be [min, max] with min < max");
   w.x_mm = {x[0], x[1]};
   w.y_mm = {y[0], y[1]};
-  const auto grid = f.numbers("grid", {double(w.grid_x), double(w.grid_y)}, 2, Rule::Positive);
+  const auto grid = f.numbers("grid", {double(w.cells_x), double(w.cells_y)}, 2, Rule::Positive);
   if (grid[0] != std::floor(grid[0]) || grid[1] != std::floor(grid[1]) || grid[0] > 1e4 || grid[1] > 1e4)
     f.error("grid", "must be two whole numbers of cells [nx, ny], each >= 1");
   else {
-    w.grid_x = static_cast<int>(grid[0]);
-    w.grid_y = static_cast<int>(grid[1]);
+    w.cells_x = static_cast<int>(grid[0]);
+    w.cells_y = static_cast<int>(grid[1]);
   }
 }
 

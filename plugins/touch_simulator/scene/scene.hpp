@@ -11,6 +11,7 @@
 #include "scene/effects.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/optics/pinhole_camera.hpp"
+#include "touchcloud/types/workspace.hpp"
 
 namespace touchcloud::sim {
 
@@ -30,13 +31,7 @@ struct ObjectSpec {
 };
 
 // Where touches may go, and the paper's grid of sampling positions over it.
-struct Workspace {
-  Eigen::Vector2d x_mm{-50, 50}, y_mm{-50, 50};  // base frame, [min, max]
-  int grid_x = 10, grid_y = 10;                   // cells; positions at cell centres
-  int cells() const { return grid_x * grid_y; }
-  // Centre of cell `index` (row-major: index = iy * grid_x + ix).
-  Eigen::Vector2d cell_centre_mm(int index) const;
-};
+using Workspace = WorkspaceGrid;
 
 struct GelSpec {
   double diameter_mm = 65.0;  // a hemisphere
@@ -78,7 +73,7 @@ struct Scene {
   std::filesystem::path file;
   std::string name;
   ObjectSpec object;
-  Workspace workspace;
+  Workspace workspace{{-50, 50}, {-50, 50}, 10, 10};  // base frame; a scene usually sets it
   GelSpec gel;
   MarkerSpec markers;
   PlateSpec plate;

@@ -93,5 +93,5 @@ TEST(SampleObjects, MeshesMatchTheirAnalyticSurfacesAndGroundTruthLiesOnThem) {
     EXPECT_EQ(scene.workspace.x_mm, Eigen::Vector2d(box.min().x(), box.max().x())) << name;
   }
   EXPECT_EQ(load_scene(touchcloud::test::source_dir() / "sample_clouds/fox_mask/scene.yaml").workspace.cells(), 14 * 14);
-  EXPECT_EQ(load_scene(touchcloud::test::source_dir() / "sample_clouds/wave_surface/scene.yaml").workspace.grid_x, 24);
+  EXPECT_EQ(load_scene(touchcloud::test::source_dir() / "sample_clouds/wave_surface/scene.yaml").workspace.cells_x, 24);
 }

@@ -6,6 +6,7 @@
 
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
+#include <pcl/conversions.h>
 #include <pcl/io/ply_io.h>
 
 #include "touchcloud/error.hpp"
@@ -16,8 +17,10 @@ namespace touchcloud {
 
 namespace {
 
-// PCL 1.13's PCDReader::read dereferences an unparsed header when the file
-// has none (a crash, not an error), so the header is checked on its own first.
+// Every cloud is loaded as a PCLPointCloud2 first and checked there: PCL
+// 1.13's PCDReader::read dereferences an unparsed header when the file has
+// none (a crash), and fromPCLPointCloud2 indexes an empty data vector for an
+// empty cloud (undefined behaviour, caught by UBSan).
 void check_pcd_header(const fs::path& file) {
   pcl::PCLPointCloud2 header;
   Eigen::Vector4f origin;
@@ -28,8 +31,11 @@ void check_pcd_header(const fs::path& file) {
     throw InputError(file.string() + " is not a readable pcd point cloud (no valid PCD header)");
   if (header.fields.empty())
     throw InputError(file.string() + " is not a readable pcd point cloud (no valid PCD header: no FIELDS)");
+}
+
+void check_xyz(const fs::path& file, const pcl::PCLPointCloud2& blob) {
   for (const char* axis : {"x", "y", "z"})
-    if (std::none_of(header.fields.begin(), header.fields.end(), [&](const auto& f) { return f.name == axis; }))
+    if (std::none_of(blob.fields.begin(), blob.fields.end(), [&](const auto& f) { return f.name == axis; }))
       throw InputError(file.string() + " has no '" + axis + "' field; a point cloud needs x, y and z");
 }
 
@@ -45,20 +51,24 @@ CloudFile read_cloud_file(const fs::path& file, NonFinitePoints nonfinite) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
 
-  auto cloud = std::make_shared<PointCloud>();
+  if (ext != ".pcd" && ext != ".ply")
+    throw InputError(file.string() + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
+  if (fs::file_size(file, ec) == 0) throw InputError(file.string() + " is empty (0 bytes)");
+  pcl::PCLPointCloud2 blob;
   int status = 0;
   if (ext == ".pcd") {
-    if (fs::file_size(file, ec) == 0) throw InputError(file.string() + " is empty (0 bytes)");
     check_pcd_header(file);
-    status = pcl::io::loadPCDFile(file.string(), *cloud);
-  } else if (ext == ".ply") {
-    if (fs::file_size(file, ec) == 0) throw InputError(file.string() + " is empty (0 bytes)");
-    status = pcl::io::loadPLYFile(file.string(), *cloud);
+    status = pcl::io::loadPCDFile(file.string(), blob);
   } else {
-    throw InputError(file.string() + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
+    status = pcl::io::loadPLYFile(file.string(), blob);
   }
   if (status < 0)
     throw InputError(file.string() + " is not a readable " + ext.substr(1) + " point cloud (corrupt or truncated)");
+  if (static_cast<std::size_t>(blob.width) * blob.height == 0 || blob.data.empty())
+    throw InputError(file.string() + " contains no points");
+  check_xyz(file, blob);
+  auto cloud = std::make_shared<PointCloud>();
+  pcl::fromPCLPointCloud2(blob, *cloud);
   if (cloud->empty()) throw InputError(file.string() + " contains no points");
 
   CloudFile out;

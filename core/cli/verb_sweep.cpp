@@ -36,11 +36,7 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-std::string number(double v) {
-  std::ostringstream s;
-  s << std::setprecision(10) << v;
-  return s.str();
-}
+std::string number(double v) { return format_value(ParamValue(v)); }
 
 // Writes `text` to `file` through a temporary name, so a reader never sees half a file.
 void write_atomically(const fs::path& file, const std::string& text) {

@@ -1,4 +1,5 @@
 #include "scene/scene_fields.hpp"
+#include "touchcloud/parameters.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -20,12 +21,8 @@ void SceneProblems::throw_if_any() const {
 
 namespace {
 
-std::string show(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+// Numbers in messages read as they do in parameter errors.
+std::string show(double v) { return format_value(ParamValue(v)); }
 
 std::optional<std::string> breaks(double v, Rule rule) {
   if (!std::isfinite(v)) return "must be a finite number";

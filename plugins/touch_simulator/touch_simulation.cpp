@@ -27,7 +27,7 @@ void require_markers_in_view(const ViewPixels& view, const char* side, const Sce
                        std::to_string(markers) +
                        " markers on the gel at rest (check sensor_from_left_camera or plate_gap_mm, "
                        "right_from_left or baseline_mm, and the intrinsics)",
-                   scene.cameras.where);
+                   scene.sensor.cameras_where);
 }
 
 }  // namespace
@@ -36,23 +36,23 @@ std::shared_ptr<const MarkerLayout> gel_marker_layout(const Scene& scene) {
   using Key = std::tuple<double, double, double, std::uint64_t>;
   static std::mutex mutex;
   static std::map<Key, std::shared_ptr<const MarkerLayout>> cache;
-  const Key key{scene.gel.radius_mm(), scene.markers.min_spacing_mm, scene.markers.mean_spacing_mm, scene.markers.seed};
+  const Key key{scene.sensor.gel.radius_mm(), scene.sensor.markers.min_spacing_mm, scene.sensor.markers.mean_spacing_mm, scene.sensor.markers.seed};
   std::lock_guard<std::mutex> lock(mutex);
   auto& layout = cache[key];
   if (!layout)
     layout = std::make_shared<const MarkerLayout>(make_marker_layout(
-        scene.gel.radius_mm(), scene.markers.min_spacing_mm, scene.markers.mean_spacing_mm, scene.markers.seed));
+        scene.sensor.gel.radius_mm(), scene.sensor.markers.min_spacing_mm, scene.sensor.markers.mean_spacing_mm, scene.sensor.markers.seed));
   return layout;
 }
 
 TouchSimulation::TouchSimulation(Scene scene, std::uint64_t noise_seed)
-    : scene_(std::move(scene)), noise_seed_(noise_seed), motion_(scene_.robot, scene_.fps) {
+    : scene_(std::move(scene)), noise_seed_(noise_seed), motion_(scene_.robot, scene_.sensor.fps) {
   const EffectSet& fx = scene_.effects;
   object_ = make_object_surface(scene_.object);
   layout_ = gel_marker_layout(scene_);
   optics_ = std::make_unique<SensorOptics>(scene_, fx.has(Effect::Refraction), fx.has(Effect::LensDistortion));
-  rest_views_.left = optics_->view(StereoSide::Left, layout_->rest_mm, scene_.markers.diameter_mm);
-  rest_views_.right = optics_->view(StereoSide::Right, layout_->rest_mm, scene_.markers.diameter_mm);
+  rest_views_.left = optics_->view(StereoSide::Left, layout_->rest_mm, scene_.sensor.markers.diameter_mm);
+  rest_views_.right = optics_->view(StereoSide::Right, layout_->rest_mm, scene_.sensor.markers.diameter_mm);
   require_markers_in_view(rest_views_.left, "left", scene_, layout_->rest_mm.size());
   require_markers_in_view(rest_views_.right, "right", scene_, layout_->rest_mm.size());
 
@@ -62,16 +62,16 @@ TouchSimulation::TouchSimulation(Scene scene, std::uint64_t noise_seed)
 
   if (fx.has(Effect::Render)) {
     const RenderStyle style = render_style(scene_.effect_parameters);
-    renderer_left_ = std::make_unique<MarkerRenderer>(scene_.cameras.left.width_px, scene_.cameras.left.height_px, style);
+    renderer_left_ = std::make_unique<MarkerRenderer>(scene_.sensor.cameras.left.width_px, scene_.sensor.cameras.left.height_px, style);
     renderer_right_ =
-        std::make_unique<MarkerRenderer>(scene_.cameras.right.width_px, scene_.cameras.right.height_px, style);
+        std::make_unique<MarkerRenderer>(scene_.sensor.cameras.right.width_px, scene_.sensor.cameras.right.height_px, style);
     if (fx.has(Effect::PixelNoise) && scene_.effect_parameters.noise_sigma_grey > 0)
       image_noise_ = std::make_unique<ImageNoise>(scene_.effect_parameters.noise_sigma_grey);
   }
 }
 
 double TouchSimulation::safe_height_mm(const Eigen::Vector2d& xy_mm) const {
-  const double r = scene_.gel.radius_mm();
+  const double r = scene_.sensor.gel.radius_mm();
   return object_->max_height_mm(xy_mm, r) + scene_.robot.safe_clearance_mm + r;
 }
 
@@ -80,7 +80,7 @@ const SimulatedFrame& TouchSimulation::step(const Eigen::Vector2d& target_xy_mm,
   SimulatedFrame& f = frame_;
   f.touch = motion_.next(target_xy_mm, start, previous_stable);
   f.index = counts_.frames_simulated;
-  f.timestamp_s = static_cast<double>(f.index) / scene_.fps;
+  f.timestamp_s = static_cast<double>(f.index) / scene_.sensor.fps;
   press_gel(layout_->rest_mm, f.touch.base_from_sensor, *object_, contact_, f.gel);
   motion_.observe_overlap(f.gel.markers_overlapping > 0);
   f.travel_past_contact_mm = motion_.travel_past_contact_mm();
@@ -114,8 +114,8 @@ const SimulatedFrame& TouchSimulation::frame() const {
 const StereoViews& TouchSimulation::views() {
   if (!views_) {
     const auto& markers = frame().gel.markers_sensor_mm;
-    views_ = StereoViews{optics_->view(StereoSide::Left, markers, scene_.markers.diameter_mm),
-                         optics_->view(StereoSide::Right, markers, scene_.markers.diameter_mm)};
+    views_ = StereoViews{optics_->view(StereoSide::Left, markers, scene_.sensor.markers.diameter_mm),
+                         optics_->view(StereoSide::Right, markers, scene_.sensor.markers.diameter_mm)};
     ++counts_.frames_projected;
   }
   return *views_;

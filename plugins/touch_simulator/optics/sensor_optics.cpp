@@ -7,75 +7,11 @@
 
 namespace touchcloud::sim {
 
-namespace {
-
-optics::PinholeCamera camera(optics::CameraIntrinsics intrinsics, bool lens_distortion) {
-  if (!lens_distortion) intrinsics.distortion = {};
-  return optics::PinholeCamera(intrinsics);
-}
-
-optics::RefractivePlate plate_in_sensor_frame(const PlateSpec& spec, bool refraction) {
-  optics::RefractivePlate plate;  // the sensor frame's origin is on the gel-side face
-  plate.normal = Eigen::Vector3d::UnitZ();
-  plate.distance_mm = -spec.thickness_mm;
-  plate.thickness_mm = spec.thickness_mm;
-  if (refraction) {
-    plate.mu_air = spec.mu_air;
-    plate.mu_acrylic = spec.mu_acrylic;
-    plate.mu_silicone = spec.mu_silicone;
-  } else {
-    plate.mu_air = plate.mu_acrylic = plate.mu_silicone = 1.0;  // straight rays
-  }
-  return plate;
-}
-
-optics::StereoRig make_rig(const Scene& scene, bool refraction, bool lens_distortion) {
-  const Eigen::Isometry3d left_from_sensor = scene.cameras.sensor_from_left_camera.inverse();
-  try {
-    return optics::StereoRig(camera(scene.cameras.left, lens_distortion), camera(scene.cameras.right, lens_distortion),
-                             scene.cameras.right_from_left,
-                             plate_in_sensor_frame(scene.plate, refraction).expressed_in(left_from_sensor));
-  } catch (const InputError& e) {
-    throw InputError(std::string("scene sensor.cameras: the cameras and the plate do not fit together: ") + e.what(),
-                     scene.cameras.where);
-  }
-}
-
-// Whether any ray of one camera reaches the silicone; counts why not.
-void require_rays_through_plate(const optics::StereoRig& rig, StereoSide side, const Scene& scene) {
-  const auto& in = rig.camera(side).intrinsics();
-  int through = 0, reflected = 0, missed = 0;
-  constexpr int kSteps = 32;
-  for (int iy = 0; iy <= kSteps; ++iy)
-    for (int ix = 0; ix <= kSteps; ++ix) {
-      const Eigen::Vector2d px((in.width_px - 1.0) * ix / kSteps, (in.height_px - 1.0) * iy / kSteps);
-      const auto ray = optics::back_project_refracted(rig, side, px);
-      if (ray.status == optics::TraceStatus::Ok) ++through;
-      else if (ray.status == optics::TraceStatus::TotalInternalReflection) ++reflected;
-      else ++missed;
-    }
-  if (through > 0) return;
-  const PlateSpec& p = scene.plate;
-  std::ostringstream s;
-  s << "scene sensor.plate: with mu_air = " << p.mu_air << ", mu_acrylic = " << p.mu_acrylic
-    << ", mu_silicone = " << p.mu_silicone << " and tilt_deg = [" << p.tilt_deg[0] << ", " << p.tilt_deg[1]
-    << "] no ray of the " << optics::to_string(side) << " camera reaches the gel: of " << (kSteps + 1) * (kSteps + 1)
-    << " sampled pixels, " << reflected << " are totally reflected and " << missed << " miss the plate";
-  throw InputError(s.str(), scene.plate_where);
-}
-
-}  // namespace
-
 SensorOptics::SensorOptics(const Scene& scene, bool refraction, bool lens_distortion)
-    : rig_(make_rig(scene, refraction, lens_distortion)),
-      left_from_sensor_(scene.cameras.sensor_from_left_camera.inverse()),
-      gel_radius_mm_(scene.gel.radius_mm()),
-      refraction_(refraction) {
-  if (refraction_) {
-    require_rays_through_plate(rig_, StereoSide::Left, scene);
-    require_rays_through_plate(rig_, StereoSide::Right, scene);
-  }
-}
+    : rig_(sensor::make_stereo_rig(scene.sensor, refraction, lens_distortion)),
+      left_from_sensor_(scene.sensor.sensor_from_left_camera().inverse()),
+      gel_radius_mm_(scene.sensor.gel.radius_mm()),
+      refraction_(refraction) {}
 
 bool SensorOptics::project(StereoSide side, const Eigen::Vector3d& marker_sensor_mm, Eigen::Vector2d& pixel_px) const {
   const Eigen::Vector3d marker_left = left_from_sensor_ * marker_sensor_mm;

@@ -18,24 +18,24 @@ void simulate(const std::filesystem::path& file) { sim::TouchSimulation(sim::loa
 TEST(SceneFile, DefaultsAreThePapersSensor) {
   TempDir dir;
   const sim::Scene s = plane_scene(dir, "[]");
-  EXPECT_EQ(s.gel.diameter_mm, 65.0);
-  EXPECT_EQ(s.markers.min_spacing_mm, 1.5);
-  EXPECT_EQ(s.markers.mean_spacing_mm, 1.8);
-  EXPECT_EQ(s.plate.mu_air, 1.0);
-  EXPECT_EQ(s.plate.mu_acrylic, 1.49);
-  EXPECT_EQ(s.plate.mu_silicone, 1.41);
-  EXPECT_EQ(s.cameras.left.width_px, 1280);
-  EXPECT_EQ(s.cameras.left.height_px, 720);
-  EXPECT_EQ(s.cameras.left.fx_px, 651.5);
-  EXPECT_EQ(s.cameras.right.fx_px, 651.5);
-  EXPECT_EQ(s.fps, 30.0);
+  EXPECT_EQ(s.sensor.gel.diameter_mm, 65.0);
+  EXPECT_EQ(s.sensor.markers.min_spacing_mm, 1.5);
+  EXPECT_EQ(s.sensor.markers.mean_spacing_mm, 1.8);
+  EXPECT_EQ(s.sensor.plate.mu_air, 1.0);
+  EXPECT_EQ(s.sensor.plate.mu_acrylic, 1.49);
+  EXPECT_EQ(s.sensor.plate.mu_silicone, 1.41);
+  EXPECT_EQ(s.sensor.cameras.left.width_px, 1280);
+  EXPECT_EQ(s.sensor.cameras.left.height_px, 720);
+  EXPECT_EQ(s.sensor.cameras.left.fx_px, 651.5);
+  EXPECT_EQ(s.sensor.cameras.right.fx_px, 651.5);
+  EXPECT_EQ(s.sensor.fps, 30.0);
   EXPECT_EQ(s.robot.press_depth_mm, 1.5);
   EXPECT_TRUE(s.effects.empty());
   // Both cameras below the plate, the right one a baseline along +x of the left.
-  const Eigen::Vector3d left = s.cameras.sensor_from_left_camera.translation();
-  const Eigen::Vector3d right = (s.cameras.sensor_from_left_camera * s.cameras.right_from_left.inverse()).translation();
-  EXPECT_NEAR(left.z(), -(s.plate.thickness_mm + sim::kDefaultPlateGapMm), 1e-12);
-  EXPECT_NEAR((right - left).x(), sim::kDefaultBaselineMm, 1e-12);
+  const Eigen::Vector3d left = s.sensor.sensor_from_left_camera().translation();
+  const Eigen::Vector3d right = (s.sensor.sensor_from_left_camera() * s.sensor.cameras.right_from_left.inverse()).translation();
+  EXPECT_NEAR(left.z(), -(s.sensor.plate.thickness_mm + sensor::kDefaultPlateGapMm), 1e-12);
+  EXPECT_NEAR((right - left).x(), sensor::kDefaultBaselineMm, 1e-12);
   EXPECT_NEAR(left.x() + right.x(), 0.0, 1e-12);
 }
 

@@ -1,21 +1,21 @@
-#include "scene/scene_fields.hpp"
+#include "touchcloud/config/yaml_fields.hpp"
 #include "touchcloud/parameters.hpp"
 
 #include <cmath>
 #include <sstream>
 
-namespace touchcloud::sim {
+namespace touchcloud::config {
 
-SourceLocation SceneProblems::where(const YAML::Node& node) const {
+SourceLocation ConfigProblems::where(const YAML::Node& node) const {
   if (!node || node.Mark().is_null()) return {file_.string(), 0, 0};
   return {file_.string(), node.Mark().line + 1, node.Mark().column + 1};
 }
 
-void SceneProblems::add(const YAML::Node& at, std::string message) { add(where(at), std::move(message)); }
-void SceneProblems::add(SourceLocation where, std::string message) {
-  problems_.push_back({std::move(where), "scene " + std::move(message)});
+void ConfigProblems::add(const YAML::Node& at, std::string message) { add(where(at), std::move(message)); }
+void ConfigProblems::add(SourceLocation where, std::string message) {
+  problems_.push_back({std::move(where), kind_ + " " + std::move(message)});
 }
-void SceneProblems::throw_if_any() const {
+void ConfigProblems::throw_if_any() const {
   if (!problems_.empty()) throw InputError(problems_);
 }
 
@@ -24,13 +24,13 @@ namespace {
 // Numbers in messages read as they do in parameter errors.
 std::string show(double v) { return format_value(ParamValue(v)); }
 
-std::optional<std::string> breaks(double v, Rule rule) {
+std::optional<std::string> breaks(double v, FieldRule rule) {
   if (!std::isfinite(v)) return "must be a finite number";
   switch (rule) {
-    case Rule::Any: return std::nullopt;
-    case Rule::Positive: return v > 0 ? std::nullopt : std::optional<std::string>("must be > 0");
-    case Rule::NonNegative: return v >= 0 ? std::nullopt : std::optional<std::string>("must be >= 0");
-    case Rule::Probability:
+    case FieldRule::Any: return std::nullopt;
+    case FieldRule::Positive: return v > 0 ? std::nullopt : std::optional<std::string>("must be > 0");
+    case FieldRule::NonNegative: return v >= 0 ? std::nullopt : std::optional<std::string>("must be >= 0");
+    case FieldRule::Probability:
       return v >= 0 && v <= 1 ? std::nullopt : std::optional<std::string>("must be in [0, 1]");
   }
   return std::nullopt;
@@ -38,7 +38,7 @@ std::optional<std::string> breaks(double v, Rule rule) {
 
 }  // namespace
 
-SceneFields::SceneFields(YAML::Node node, std::string path, SceneProblems& problems)
+ConfigFields::ConfigFields(YAML::Node node, std::string path, ConfigProblems& problems)
     : node_(std::move(node)), path_(std::move(path)), problems_(problems) {
   if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
     problems_.add(node_, (path_.empty() ? std::string("file") : path_) + ": must be a mapping of fields");
@@ -46,7 +46,7 @@ SceneFields::SceneFields(YAML::Node node, std::string path, SceneProblems& probl
   }
 }
 
-SceneFields::~SceneFields() {
+ConfigFields::~ConfigFields() {
   if (!node_.IsDefined() || !node_.IsMap()) return;
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>("");
@@ -58,23 +58,23 @@ SceneFields::~SceneFields() {
 }
 
 // An empty value (`key:`) counts as absent: the field takes its default.
-bool SceneFields::has(const std::string& key) const {
+bool ConfigFields::has(const std::string& key) const {
   return node_ && node_.IsMap() && node_[key] && !node_[key].IsNull();
 }
 
-YAML::Node SceneFields::raw(const std::string& key) {
+YAML::Node ConfigFields::raw(const std::string& key) {
   read_.insert(key);
   if (!has(key)) return YAML::Node(YAML::NodeType::Undefined);
   const YAML::Node& map = node_;  // const: reading a key must not add it
   return map[key];
 }
 
-void SceneFields::error(const std::string& key, const std::string& message) {
+void ConfigFields::error(const std::string& key, const std::string& message) {
   const YAML::Node at = has(key) ? node_[key] : node_;
   problems_.add(at, field(key) + ": " + message);
 }
 
-double SceneFields::number(const std::string& key, double fallback, Rule rule) {
+double ConfigFields::number(const std::string& key, double fallback, FieldRule rule) {
   const YAML::Node n = raw(key);
   if (!n.IsDefined() || n.IsNull()) return fallback;
   double v = 0;
@@ -89,7 +89,7 @@ double SceneFields::number(const std::string& key, double fallback, Rule rule) {
   return v;
 }
 
-int SceneFields::integer(const std::string& key, int fallback, int min_value) {
+int ConfigFields::integer(const std::string& key, int fallback, int min_value) {
   const YAML::Node n = raw(key);
   if (!n.IsDefined() || n.IsNull()) return fallback;
   long long v = 0;
@@ -104,7 +104,7 @@ int SceneFields::integer(const std::string& key, int fallback, int min_value) {
   return static_cast<int>(v);
 }
 
-std::uint64_t SceneFields::seed(const std::string& key, std::uint64_t fallback) {
+std::uint64_t ConfigFields::seed(const std::string& key, std::uint64_t fallback) {
   const YAML::Node n = raw(key);
   if (!n.IsDefined() || n.IsNull()) return fallback;
   std::uint64_t v = 0;
@@ -115,7 +115,7 @@ std::uint64_t SceneFields::seed(const std::string& key, std::uint64_t fallback) 
   return v;
 }
 
-std::string SceneFields::text(const std::string& key, const std::string& fallback) {
+std::string ConfigFields::text(const std::string& key, const std::string& fallback) {
   const YAML::Node n = raw(key);
   if (!n.IsDefined() || n.IsNull()) return fallback;
   if (!n.IsScalar()) {
@@ -125,8 +125,8 @@ std::string SceneFields::text(const std::string& key, const std::string& fallbac
   return n.Scalar();
 }
 
-std::vector<double> SceneFields::numbers(const std::string& key, std::vector<double> fallback, std::size_t count,
-                                         Rule rule) {
+std::vector<double> ConfigFields::numbers(const std::string& key, std::vector<double> fallback, std::size_t count,
+                                         FieldRule rule) {
   const YAML::Node n = raw(key);
   if (!n.IsDefined() || n.IsNull()) return fallback;
   if (!n.IsSequence() || n.size() != count) {
@@ -149,8 +149,26 @@ std::vector<double> SceneFields::numbers(const std::string& key, std::vector<dou
   return out;
 }
 
-std::unique_ptr<SceneFields> SceneFields::child(const std::string& key) {
-  return std::make_unique<SceneFields>(raw(key), field(key), problems_);
+std::unique_ptr<ConfigFields> ConfigFields::child(const std::string& key) {
+  return std::make_unique<ConfigFields>(raw(key), field(key), problems_);
 }
 
-}  // namespace touchcloud::sim
+Eigen::Matrix3d rpy_rotation(double roll_deg, double pitch_deg, double yaw_deg) {
+  constexpr double kDegToRad = M_PI / 180.0;
+  return (Eigen::AngleAxisd(yaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(pitch_deg * kDegToRad, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+Eigen::Isometry3d read_pose(ConfigFields& pose, Eigen::Vector3d* rpy_deg_out) {
+  const auto xyz = pose.numbers("xyz_mm", {0, 0, 0}, 3);
+  const auto rpy = pose.numbers("rpy_deg", {0, 0, 0}, 3);
+  if (rpy_deg_out) *rpy_deg_out = {rpy[0], rpy[1], rpy[2]};
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = rpy_rotation(rpy[0], rpy[1], rpy[2]);
+  t.translation() = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  return t;
+}
+
+}  // namespace touchcloud::config

@@ -3,7 +3,10 @@
 // paired through the sensor model (RestingGelMatcher) and each pair gets a
 // marker id. Every later frame follows those ids in each view
 // (ViewTracker); a marker is matched in a frame when both views found it.
-// Markers seen in one view only are reported, never paired by guess.
+// A marker missing from the reference (dropped out, occluded) joins later
+// when both views see it where the resting gel puts it (within
+// join_gate_px), so its first position is still a no-contact one. Markers
+// seen in one view only are reported, never paired by guess.
 #include <algorithm>
 #include <limits>
 
@@ -17,12 +20,12 @@ namespace touchcloud {
 class MarkerMatching final : public Stage {
   std::string sensor_file_;
   bool lens_distortion_ = false;
-  double match_gate_px_ = 4.0, track_gate_px_ = 6.0;
+  double match_gate_px_ = 4.0, track_gate_px_ = 6.0, join_gate_px_ = 1.0;
 
   std::unique_ptr<matching::RestingGelMatcher> matcher_;
   matching::ViewTracker left_, right_;
   bool have_reference_ = false;
-  std::size_t reference_pairs_ = 0, frames_ = 0;
+  std::size_t reference_pairs_ = 0, joined_ = 0, frames_ = 0;
   std::size_t fewest_matched_ = std::numeric_limits<std::size_t>::max();
   double matched_sum_ = 0, left_only_sum_ = 0, right_only_sum_ = 0;
 
@@ -34,6 +37,9 @@ class MarkerMatching final : public Stage {
         .doc("reference frame: a right marker pairs with a left one within this distance of its predicted pixel");
     p.add("track_gate_px", track_gate_px_, 6.0).unit("px").above(0.0)
         .doc("later frames: a marker is looked for within this distance of where it was last seen");
+    p.add("join_gate_px", join_gate_px_, 1.0).unit("px").at_least(0.0)
+        .doc("later frames: an unpaired marker gets an id when both views see it this close to where the resting "
+             "gel puts it (0: only the reference frame's markers get ids)");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<MarkerSetPtr>("markers", "detected markers of both views (the first frame: no contact)");
@@ -64,11 +70,15 @@ class MarkerMatching final : public Stage {
     for (auto& m : out->left) m.id = -1;  // ids are this stage's to give
     for (auto& m : out->right) m.id = -1;
     out->matches = matcher_->match(in.left, in.right, match_gate_px_);
-    if (out->matches.empty())
-      throw InputError("input 'markers': no left marker of the reference frame has a right partner within " +
-                       std::to_string(match_gate_px_) + " px of where the sensor model puts it (" +
-                       std::to_string(in.left.size()) + " left, " + std::to_string(in.right.size()) +
-                       " right markers); check the 'sensor' file (calibration) and match_gate_px");
+    // With the right sensor model nearly every marker seen twice pairs up; a
+    // wrong one pairs only the few that land near some marker by chance.
+    const std::size_t fewer = std::min(in.left.size(), in.right.size());
+    if (2 * out->matches.size() < fewer)
+      throw InputError("input 'markers': only " + std::to_string(out->matches.size()) + " of the reference frame's " +
+                       std::to_string(in.left.size()) + " left and " + std::to_string(in.right.size()) +
+                       " right markers pair up within " + format_value(ParamValue(match_gate_px_)) +
+                       " px of where the sensor model puts them; check the 'sensor' file (calibration) and "
+                       "match_gate_px");
     std::vector<Eigen::Vector2d> left_px, right_px;
     for (std::size_t id = 0; id < out->matches.size(); ++id) {
       MarkerMatch& m = out->matches[id];
@@ -80,16 +90,36 @@ class MarkerMatching final : public Stage {
     left_.start(std::move(left_px));
     right_.start(std::move(right_px));
     reference_pairs_ = out->matches.size();
+    joined_ = 0;
     have_reference_ = true;
     return out;
+  }
+
+  // Markers without an id in both views that sit where the resting gel puts
+  // them become new pairs.
+  void join_new_pairs(const MarkerSet& in, std::vector<int>& left_ids, std::vector<int>& right_ids) {
+    std::vector<Marker> free_left, free_right;
+    std::vector<std::size_t> left_at, right_at;
+    for (std::size_t i = 0; i < left_ids.size(); ++i)
+      if (left_ids[i] < 0) free_left.push_back(in.left[i]), left_at.push_back(i);
+    for (std::size_t i = 0; i < right_ids.size(); ++i)
+      if (right_ids[i] < 0) free_right.push_back(in.right[i]), right_at.push_back(i);
+    if (free_left.empty() || free_right.empty()) return;
+    for (const MarkerMatch& m : matcher_->match(free_left, free_right, join_gate_px_)) {
+      const int id = left_.add(free_left[m.left].centre_px);
+      right_.add(free_right[m.right].centre_px);
+      left_ids[left_at[m.left]] = right_ids[right_at[m.right]] = id;
+      ++joined_;
+    }
   }
 
   std::shared_ptr<MarkerSet> track(const MarkerSet& in) {
     auto out = std::make_shared<MarkerSet>(in);
     out->matches.clear();
-    const std::vector<int> left_ids = left_.update(in.left, track_gate_px_);
-    const std::vector<int> right_ids = right_.update(in.right, track_gate_px_);
-    std::vector<int> right_of(reference_pairs_, -1);
+    std::vector<int> left_ids = left_.update(in.left, track_gate_px_);
+    std::vector<int> right_ids = right_.update(in.right, track_gate_px_);
+    if (join_gate_px_ > 0) join_new_pairs(in, left_ids, right_ids);
+    std::vector<int> right_of(left_.ids(), -1);
     for (std::size_t r = 0; r < right_ids.size(); ++r) {
       out->right[r].id = right_ids[r];
       if (right_ids[r] >= 0) right_of[right_ids[r]] = static_cast<int>(r);
@@ -120,6 +150,7 @@ class MarkerMatching final : public Stage {
     if (frames_ == 0) return;
     const double n = static_cast<double>(frames_);
     ctx.metric("reference_pairs", static_cast<double>(reference_pairs_), "markers");
+    ctx.metric("joined_later", static_cast<double>(joined_), "markers");
     ctx.metric("matched_mean", matched_sum_ / n, "markers");
     ctx.metric("matched_fewest", static_cast<double>(fewest_matched_), "markers");
     ctx.metric("left_only_mean", left_only_sum_ / n, "markers");

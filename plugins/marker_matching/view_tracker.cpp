@@ -8,6 +8,11 @@ namespace touchcloud::matching {
 
 void ViewTracker::start(std::vector<Eigen::Vector2d> pixels) { last_px_ = std::move(pixels); }
 
+int ViewTracker::add(const Eigen::Vector2d& pixel) {
+  last_px_.push_back(pixel);
+  return static_cast<int>(last_px_.size()) - 1;
+}
+
 std::vector<int> ViewTracker::update(const std::vector<Marker>& detections, double gate_px) {
   const PixelIndex index(detections);
   std::vector<int> id_of(detections.size(), -1);

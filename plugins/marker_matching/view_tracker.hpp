@@ -19,6 +19,8 @@ class ViewTracker {
   // Id i starts at pixels[i].
   void start(std::vector<Eigen::Vector2d> pixels);
   std::size_t ids() const { return last_px_.size(); }
+  // A new id at `pixel`; returns it.
+  int add(const Eigen::Vector2d& pixel);
 
   // For each detection, the id it continues, or -1.
   std::vector<int> update(const std::vector<Marker>& detections, double gate_px);

@@ -1,0 +1,142 @@
+// marker_matching on simulated marker pixels (the simulator's marker truth,
+// with centre noise and dropout, anonymised and shuffled as a detector would
+// report them): the reference frame's pairs are the true ones, and ids
+// follow their markers through a press without a swap.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "stage_harness.hpp"
+#include "stereo_matcher.hpp"
+#include "touch_simulation.hpp"
+#include "touchcloud/sensor/gelstereo_sensor.hpp"
+
+using namespace touchcloud;
+using test::TempDir;
+
+namespace {
+
+// A plane 10 mm high under the default sensor.
+std::filesystem::path write_scene(const TempDir& dir, const std::string& effects,
+                                  const std::string& extra = "sensor: {}") {
+  const auto file = dir / "scene.yaml";
+  test::write_file(file, "object: {analytic: plane, height_mm: 10}\n" + extra + "\neffects: " + effects + "\n");
+  return file;
+}
+
+const std::string kNoisyEffects =
+    "[contact, refraction, {pixel_noise: {sigma_px: 0.1}}, {marker_dropout: {probability: 0.03}}]";
+
+// What a detector reports: no ids, no pairs, in no particular order. The
+// true marker id of each reported marker is kept aside.
+struct Anonymised {
+  MarkerSetPtr markers;
+  std::vector<int> true_left, true_right;
+};
+
+Anonymised anonymise(MarkerSet set, std::mt19937_64& rng) {
+  Anonymised a;
+  std::shuffle(set.left.begin(), set.left.end(), rng);
+  std::shuffle(set.right.begin(), set.right.end(), rng);
+  for (auto& m : set.left) a.true_left.push_back(m.id), m.id = -1;
+  for (auto& m : set.right) a.true_right.push_back(m.id), m.id = -1;
+  set.matches.clear();
+  a.markers = std::make_shared<MarkerSet>(std::move(set));
+  return a;
+}
+
+}  // namespace
+
+TEST(RestingGelMatcher, PairsTheReferenceFramesMarkersCorrectly) {
+  TempDir dir;
+  const auto scene_file = write_scene(dir, kNoisyEffects);
+  sim::TouchSimulation sim(sim::load_scene(scene_file), 5);
+  sim.step({0, 0}, false);  // at the safe height: no contact
+  const MarkerSet truth = sim.marker_set();
+  std::mt19937_64 rng(1);
+  const Anonymised a = anonymise(truth, rng);
+
+  const auto sensor = sensor::load_gelstereo_sensor(scene_file);
+  const matching::RestingGelMatcher matcher(sensor::make_stereo_rig(sensor, true, false),
+                                            sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm());
+  const auto matches = matcher.match(a.markers->left, a.markers->right, 4.0);
+  std::size_t wrong = 0;
+  for (const auto& m : matches) wrong += a.true_left[m.left] != a.true_right[m.right];
+  EXPECT_EQ(wrong, 0u);
+  // Nearly every marker both views report is paired (a few at the image
+  // border may have predictions that leave the right image).
+  EXPECT_GE(matches.size(), static_cast<std::size_t>(0.995 * truth.matches.size()))
+      << matches.size() << " of " << truth.matches.size();
+  EXPECT_GT(truth.matches.size(), 1400u);
+}
+
+TEST(MarkerMatchingStage, IdsFollowTheirMarkersThroughAPressAndOneViewMarkersStayUnpaired) {
+  TempDir dir;
+  const auto scene_file = write_scene(dir, kNoisyEffects);
+  sim::TouchSimulation sim(sim::load_scene(scene_file), 7);
+  test::StageHarness stage("marker_matching", {{"sensor", scene_file.string()}}, "match");
+  stage.configure();
+  std::mt19937_64 rng(2);
+  std::map<int, int> true_id_of;  // stage id -> simulator marker id
+  double deepest_travel = 0;
+  for (int frame = 0; frame < 45; ++frame) {
+    const auto& f = sim.step({3, -2}, false);  // keeps pressing: ~6 mm past first contact at the end
+    deepest_travel = f.travel_past_contact_mm;
+    const MarkerSet truth = sim.marker_set();
+    const Anonymised a = anonymise(truth, rng);
+    const auto out = stage.process_one<MarkerSetPtr>({{"markers", std::any(a.markers)}}, "markers");
+    std::size_t swapped = 0;
+    for (const auto& m : out->matches) {
+      ASSERT_EQ(a.true_left[m.left], a.true_right[m.right]) << "frame " << frame;
+      const auto [it, fresh] = true_id_of.emplace(m.id, a.true_left[m.left]);
+      swapped += !fresh && it->second != a.true_left[m.left];
+    }
+    EXPECT_EQ(swapped, 0u) << "frame " << frame;
+    // A marker found in both views this frame is paired unless its track was
+    // lost (it fell out of a view earlier).
+    EXPECT_GE(out->matches.size(), static_cast<std::size_t>(0.99 * truth.matches.size())) << "frame " << frame;
+  }
+  EXPECT_GT(deepest_travel, 2.0) << "the press never got deep";
+  stage.finish();
+  EXPECT_GT(stage.metric("reference_pairs"), 1400);
+  // Dropout removes ~3% of each view: those markers are reported as one-view only.
+  EXPECT_GT(stage.metric("left_only_mean"), 20);
+  EXPECT_GT(stage.metric("right_only_mean"), 20);
+}
+
+TEST(MarkerMatchingStage, AReferenceFrameWithoutMarkersIsNamed) {
+  TempDir dir;
+  const auto scene_file = write_scene(dir, "[]");
+  test::StageHarness stage("marker_matching", {{"sensor", scene_file.string()}});
+  stage.configure();
+  auto empty_left = std::make_shared<MarkerSet>();
+  empty_left->right.push_back({{600, 300}, -1, 1});
+  try {
+    stage.process({{"markers", std::any(MarkerSetPtr(empty_left))}}, {"markers"});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("reference"), std::string::npos) << m;
+    EXPECT_NE(m.find("left view"), std::string::npos) << m;
+  }
+}
+
+TEST(MarkerMatchingStage, ASensorFileThatDoesNotFitTheImagesIsNamed) {
+  // The markers come from a sensor with a 30 mm baseline; the stage is told
+  // 40 mm, so no prediction lands near a right marker.
+  TempDir dir;
+  const auto scene_file = write_scene(dir, "[contact, refraction]");
+  sim::TouchSimulation sim(sim::load_scene(scene_file), 1);
+  sim.step({0, 0}, false);
+  const auto wrong_file = dir / "wrong_sensor.yaml";
+  test::write_file(wrong_file, "sensor: {cameras: {baseline_mm: 40}}\n");
+  test::StageHarness stage("marker_matching", {{"sensor", wrong_file.string()}});
+  stage.configure();
+  try {
+    stage.process({{"markers", std::any(MarkerSetPtr(std::make_shared<MarkerSet>(sim.marker_set())))}}, {"markers"});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("check the 'sensor' file"), std::string::npos) << e.what();
+  }
+}

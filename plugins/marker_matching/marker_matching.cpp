@@ -2,7 +2,9 @@
 // first frame is the no-contact reference: its left and right markers are
 // paired through the sensor model (RestingGelMatcher) and each pair gets a
 // marker id. Every later frame follows those ids in each view
-// (ViewTracker); a marker is matched in a frame when both views found it.
+// (ViewTracker: a marker is first looked for at its no-contact pixel, then
+// near where it was last seen); it is matched in a frame when both views
+// found it.
 // A marker missing from the reference (dropped out, occluded) joins later
 // when both views see it where the resting gel puts it (within
 // join_gate_px), so its first position is still a no-contact one. Markers
@@ -20,7 +22,7 @@ namespace touchcloud {
 class MarkerMatching final : public Stage {
   std::string sensor_file_;
   bool lens_distortion_ = false;
-  double match_gate_px_ = 4.0, track_gate_px_ = 6.0, join_gate_px_ = 1.0;
+  double match_gate_px_ = 4.0, track_gate_px_ = 6.0, rest_gate_px_ = 1.0, join_gate_px_ = 1.0;
 
   std::unique_ptr<matching::RestingGelMatcher> matcher_;
   matching::ViewTracker left_, right_;
@@ -37,6 +39,8 @@ class MarkerMatching final : public Stage {
         .doc("reference frame: a right marker pairs with a left one within this distance of its predicted pixel");
     p.add("track_gate_px", track_gate_px_, 6.0).unit("px").above(0.0)
         .doc("later frames: a marker is looked for within this distance of where it was last seen");
+    p.add("rest_gate_px", rest_gate_px_, 1.0).unit("px").above(0.0)
+        .doc("later frames: a marker within this distance of its no-contact pixel is taken as back at rest");
     p.add("join_gate_px", join_gate_px_, 1.0).unit("px").at_least(0.0)
         .doc("later frames: an unpaired marker gets an id when both views see it this close to where the resting "
              "gel puts it (0: only the reference frame's markers get ids)");
@@ -116,8 +120,8 @@ class MarkerMatching final : public Stage {
   std::shared_ptr<MarkerSet> track(const MarkerSet& in) {
     auto out = std::make_shared<MarkerSet>(in);
     out->matches.clear();
-    std::vector<int> left_ids = left_.update(in.left, track_gate_px_);
-    std::vector<int> right_ids = right_.update(in.right, track_gate_px_);
+    std::vector<int> left_ids = left_.update(in.left, rest_gate_px_, track_gate_px_);
+    std::vector<int> right_ids = right_.update(in.right, rest_gate_px_, track_gate_px_);
     if (join_gate_px_ > 0) join_new_pairs(in, left_ids, right_ids);
     std::vector<int> right_of(left_.ids(), -1);
     for (std::size_t r = 0; r < right_ids.size(); ++r) {

@@ -1,9 +1,12 @@
-// Follows marker ids from frame to frame in one camera view. Each id looks
-// for the nearest detection within a gate around where it was last seen;
-// a detection wanted by two ids goes to the nearer. An id not found keeps its
-// last pixel and is looked for again in the next frame. Between frames at
-// 30 fps a marker moves a few pixels, a fraction of the ~15 px between
-// neighbours, so nearest-neighbour assignment is unambiguous.
+// Follows marker ids from frame to frame in one camera view. A marker back
+// at (or still at) its no-contact pixel is recognised there first, within a
+// tight gate: most markers are at rest in every frame, and after the sensor
+// lifts off every marker returns there at once, farther than tracking would
+// follow. The others look for the nearest remaining detection within a gate
+// around where they were last seen: between frames at 30 fps a pressed
+// marker moves a few pixels, a fraction of the ~15 px between neighbours. A
+// detection wanted by two ids goes to the nearer; an id not found keeps its
+// last pixel and is looked for again in the next frame.
 #pragma once
 
 #include <vector>
@@ -16,17 +19,17 @@ namespace touchcloud::matching {
 
 class ViewTracker {
  public:
-  // Id i starts at pixels[i].
+  // Id i starts, and rests, at pixels[i].
   void start(std::vector<Eigen::Vector2d> pixels);
   std::size_t ids() const { return last_px_.size(); }
-  // A new id at `pixel`; returns it.
+  // A new id resting at `pixel`; returns it.
   int add(const Eigen::Vector2d& pixel);
 
   // For each detection, the id it continues, or -1.
-  std::vector<int> update(const std::vector<Marker>& detections, double gate_px);
+  std::vector<int> update(const std::vector<Marker>& detections, double rest_gate_px, double track_gate_px);
 
  private:
-  std::vector<Eigen::Vector2d> last_px_;
+  std::vector<Eigen::Vector2d> rest_px_, last_px_;
 };
 
 }  // namespace touchcloud::matching

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "nearest_name.hpp"
+#include "touchcloud/run_context.hpp"
 #include "pipeline_model.hpp"
 
 namespace fs = std::filesystem;
@@ -183,12 +184,24 @@ class Resolver {
   }
 
   // Relative input files are relative to the pipeline file's folder (to the
-  // working directory for --set); they must exist and be readable.
+  // working directory for --set); they must exist and be readable, except a
+  // per-iteration pattern ("frame_{iteration}.png"), whose folder must exist.
   bool resolve_input_file(const ParamSpec& spec, ParamValue& value, const ParamDoc& p, const std::string& who) {
     fs::path path = std::get<std::string>(value);
     if (path.is_relative() && !p.from_command_line) path = doc_.file.parent_path() / path;
     path = path.lexically_normal();
     std::error_code ec;
+    if (path.string().find(kIterationField) != std::string::npos) {
+      // One file per loop iteration: the stage reads them as the loop runs;
+      // here only the folder can be checked.
+      if (!fs::is_directory(path.parent_path(), ec)) {
+        error(p.where, who + ", parameter '" + spec.name + "': folder " + path.parent_path().string() +
+                           " does not exist");
+        return false;
+      }
+      value = path.string();
+      return true;
+    }
     if (!fs::exists(path, ec)) {
       error(p.where, who + ", parameter '" + spec.name + "': input file " + path.string() + " does not exist");
       return false;

@@ -1,5 +1,6 @@
 #include "touchcloud/run_context.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -59,6 +60,13 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
 
 void RunContext::log(const std::string& message) const {
   if (!record_.quiet) std::clog << "[" << stage_id_ << "] " << message << "\n";
+}
+
+std::string RunContext::with_iteration(std::string text) const {
+  const std::string field = kIterationField, value = std::to_string(std::max(iteration_, 0));
+  for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + value.size()))
+    text.replace(at, field.size(), value);
+  return text;
 }
 
 }  // namespace touchcloud

@@ -29,9 +29,7 @@ class CloudWriter final : public Stage {
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud || cloud->empty()) throw RunError("the cloud to write is empty");
-    std::string name = path_;
-    if (auto at = name.find("{iteration}"); at != std::string::npos)
-      name.replace(at, 11, std::to_string(std::max(ctx.iteration(), 0)));
+    const std::string name = ctx.with_iteration(path_);
     const auto file = ctx.output_path(name);
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
     const bool ply = file.extension() == ".ply";

@@ -12,6 +12,9 @@
 
 namespace touchcloud {
 
+// The placeholder RunContext::with_iteration replaces.
+inline constexpr const char* kIterationField = "{iteration}";
+
 struct MetricSeries {
   std::string unit;
   std::vector<double> values;  // one per report; in a loop, one per iteration
@@ -37,6 +40,9 @@ class RunContext {
   std::mt19937_64& rng() { return rng_; }
   // Index of the current iteration of the innermost enclosing loop, -1 outside.
   int iteration() const { return iteration_; }
+  // `text` with each "{iteration}" replaced by iteration() (0 outside loops):
+  // one file per iteration, for readers and writers.
+  std::string with_iteration(std::string text) const;
   void set_iteration(int i) { iteration_ = i; }
 
   // A number for summary.json; finite, or RunError. Reported once per

@@ -1,0 +1,79 @@
+// marker_detection: finds the marker dots in both images of a stereo frame
+// (sub-pixel centres, quality), leaving stereo matching to a later stage.
+// The detector itself is detector/marker_detector.hpp.
+#include <optional>
+
+#include "detector/stereo_markers.hpp"
+#include "touchcloud/plugin.hpp"
+
+namespace touchcloud {
+
+class MarkerDetection final : public Stage {
+  std::string polarity_;
+  std::vector<double> diameter_px_;
+  double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0;
+  int background_window_px_ = 0;
+  std::optional<MarkerDetector> detector_;
+
+  void declare_parameters(ParameterSet& p) override {
+    const MarkerDetectorOptions d;
+    p.add("polarity", polarity_, std::string("dark"))
+        .choices({"dark", "bright"})
+        .doc("dots darker than the gel around them (GelStereo), or brighter");
+    p.add("diameter_px", diameter_px_, std::vector<double>{d.min_diameter_px, d.max_diameter_px})
+        .unit("px")
+        .size(2)
+        .range(1, 200)
+        .doc("[min, max] expected dot diameter in the images; blobs outside it (with ~1-2 px slack for blur) are "
+             "dropped");
+    p.add("contrast_grey", contrast_grey_, d.contrast_grey)
+        .unit("grey levels")
+        .above(0)
+        .below(255)
+        .doc("least difference from the local background that makes a pixel part of a dot; well above the "
+             "noise, well below the dots' contrast");
+    p.add("background_window_px", background_window_px_, d.background_window_px)
+        .unit("px")
+        .range(0, 401)
+        .doc("window of the local background estimate (closing/opening, then box blur); wider than the largest "
+             "dot, narrower than the lighting's changes; 0: max diameter + 3");
+    p.add("min_fill", min_fill_, d.min_fill)
+        .range(0, 1)
+        .doc("least blob area / bounding-box area (a disc fills 0.785); drops streaks and merged dots");
+    p.add("max_elongation", max_elongation_, d.max_elongation)
+        .at_least(1)
+        .doc("largest ratio of a dot's principal axes (contrast-weighted moments; a disc makes 1, a dot seen "
+             "at 60 degrees 2)");
+  }
+
+  void declare_ports(PortSet& ports) override {
+    ports.input<StereoFramePtr>("frame", "stereo images, 8-bit grey or BGR, both the same size");
+    ports.output<MarkerSetPtr>("markers", "sub-pixel marker centres per view (id -1, quality in [0, 1]); "
+                                          "matches empty");
+  }
+
+  void on_configure(RunContext&) override {
+    MarkerDetectorOptions o;
+    o.polarity = polarity_ == "bright" ? MarkerPolarity::Bright : MarkerPolarity::Dark;
+    o.min_diameter_px = diameter_px_.at(0);
+    o.max_diameter_px = diameter_px_.at(1);
+    o.contrast_grey = contrast_grey_;
+    o.background_window_px = background_window_px_;
+    o.min_fill = min_fill_;
+    o.max_elongation = max_elongation_;
+    detector_.emplace(o);  // checks the options (ParameterError)
+  }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto& frame = io.input<StereoFramePtr>("frame");
+    auto markers = std::make_shared<MarkerSet>(detect_stereo_markers(*detector_, frame, "frame"));
+    ctx.metric("markers_left", static_cast<double>(markers->left.size()), "markers");
+    ctx.metric("markers_right", static_cast<double>(markers->right.size()), "markers");
+    io.output<MarkerSetPtr>("markers", std::move(markers));
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::MarkerDetection, "marker_detection",
+                  "Finds marker dots with sub-pixel centres in both images of a stereo frame")

@@ -17,7 +17,7 @@ void ConfigCheck::require(bool ok, const std::string& field, const std::string& 
 }
 
 void ConfigCheck::require(bool ok, const std::string& field, double value, const std::string& rule) {
-  require(ok, field, format_number(value), rule);
+  if (!ok) require(ok, field, format_number(value), rule);
 }
 
 void ConfigCheck::throw_if_failed() const {

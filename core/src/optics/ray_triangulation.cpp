@@ -11,11 +11,13 @@
 namespace touchcloud::optics {
 
 void RayTriangulationOptions::validate(const char* what) const {
+  // Checked on every triangulation: the passing case allocates nothing.
+  const bool angle_ok = min_ray_angle_rad > 0 && min_ray_angle_rad < std::numbers::pi / 2;
+  const bool tolerance_ok = std::isfinite(behind_tolerance_mm) && behind_tolerance_mm >= 0;
+  if (angle_ok && tolerance_ok) return;
   ConfigCheck check(what);
-  check.require(min_ray_angle_rad > 0 && min_ray_angle_rad < std::numbers::pi / 2, "min_ray_angle_rad",
-                min_ray_angle_rad, "in (0, pi/2)");
-  check.require(std::isfinite(behind_tolerance_mm) && behind_tolerance_mm >= 0, "behind_tolerance_mm",
-                behind_tolerance_mm, "finite and >= 0");
+  check.require(angle_ok, "min_ray_angle_rad", min_ray_angle_rad, "in (0, pi/2)");
+  check.require(tolerance_ok, "behind_tolerance_mm", behind_tolerance_mm, "finite and >= 0");
   check.throw_if_failed();
 }
 

@@ -1,4 +1,5 @@
 // touchcloud run PIPELINE [--set K=V]... [--seed N] [--out DIR]
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 
@@ -38,8 +39,11 @@ Action* add_run_verb(CLI::App& app) {
 
       std::cout << "pipeline '" << p.name() << "' ran in " << std::fixed << std::setprecision(3) << r.wall_time_s
                 << " s (seed " << o.seed << ")\n";
+      std::size_t width = 36;
+      for (const auto& [name, series] : r.record.metrics) width = std::max(width, name.size() + 1);
       for (const auto& [name, series] : r.record.metrics)
-        std::cout << "  " << std::left << std::setw(36) << name << std::defaultfloat << std::setprecision(6)
+        std::cout << "  " << std::left << std::setw(static_cast<int>(width)) << name << std::defaultfloat
+                  << std::setprecision(6)
                   << series.values.back() << (series.unit.empty() ? "" : " " + series.unit) << "\n";
       std::cout << "wrote " << r.record.outputs.size() + 1 << " files to " << options.out_dir.string()
                 << " (summary.json";

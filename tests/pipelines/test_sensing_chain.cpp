@@ -96,3 +96,23 @@ stages:
   EXPECT_LT(refractive_mm, 0.05);
   EXPECT_GT(pinhole_mm, 1.0);
 }
+
+TEST(SensingChain, RenderedImagesGiveTheSameContactFrameAndSalientPointsNearTheSurface) {
+  // pipelines/simulate_touch_images.yaml: noise sigma 2 grey levels, blur 0.9 px.
+  test::TempDir dir;
+  const RunResult r = run(test::source_dir() / "pipelines/simulate_touch_images.yaml", {}, dir / "out");
+  EXPECT_EQ(metric(r, "contact.frames_to_stable"), metric(r, "truth_contact.frames_to_stable"));
+  EXPECT_GE(metric(r, "match.matched_fewest"), 0.99 * metric(r, "sim.markers_seen_both"));
+  const PointCloud salient = test::load_cloud(dir / "out/salient_rsrt.pcd");
+  const auto surface = sim::make_object_surface(sim::load_scene(kFoxScene).object);
+  double sum = 0, worst = 0;
+  for (const auto& p : salient) {
+    const double off = std::abs(p.z - surface->height_mm({p.x, p.y}));
+    sum += off, worst = std::max(worst, off);
+  }
+  std::printf("salient points from images: %zu, off the surface by %.4f mm mean, %.4f mm at most\n", salient.size(),
+              sum / static_cast<double>(salient.size()), worst);
+  EXPECT_GT(salient.size(), 20u);
+  EXPECT_LT(sum / static_cast<double>(salient.size()), 0.02);
+  EXPECT_LT(worst, 0.1);
+}

@@ -1,0 +1,131 @@
+// rsrt_calibration: refractive calibration of the GelStereo plate from
+// checkerboard presses. Runs in a loop, one press per iteration, and
+// collects the corners; on finish it estimates d_xy, the plate normal and
+// mu_silicone (calibration/plate_calibration.hpp) and writes the calibrated
+// sensor file.
+#include <cmath>
+#include <sstream>
+
+#include "calibration/plate_calibration.hpp"
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/sensor/gelstereo_sensor.hpp"
+
+namespace touchcloud {
+
+class RsrtCalibration final : public Stage {
+  std::string sensor_file_, output_, distances_;
+  std::vector<double> board_corners_;
+  double square_mm_ = 4, min_board_tilt_deg_ = 5;
+  bool lens_distortion_ = true, diagonals_ = true;
+  int min_corners_per_press_ = 9;
+
+  calibration::Checkerboard board_;
+  std::vector<calibration::PressCorners> presses_;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("sensor", sensor_file_, std::string()).input_file()
+        .doc("the initial guess: a scene or sensor file with a 'sensor:' section (cameras known, plate guessed)");
+    p.add("board_corners", board_corners_, std::vector<double>{8, 6}).size(2).range(2, 100)
+        .doc("inner corners of the board [cols, rows]; corner id = row * cols + col");
+    p.add("square_mm", square_mm_, 4.0).unit("mm").above(0).doc("edge of one board square");
+    p.add("output", output_, std::string("calibrated_sensor.yaml")).output_file()
+        .doc("the calibrated sensor file, in the output folder");
+    p.add("lens_distortion", lens_distortion_, false)
+        .doc("apply the sensor file's lens distortion coefficients to the corner pixels (as the corners were imaged; "
+             "the sensing stages must then set it too)");
+    p.add("distances", distances_, std::string("all_pairs"))
+        .choices({"all_pairs", "rows_and_columns", "neighbours"})
+        .doc("corner pairs whose distances are fitted; neighbours (the paper's) is biased by pixel noise");
+    p.add("diagonals", diagonals_, true).doc("with rows_and_columns or neighbours: also fit the squares' diagonals");
+    p.add("min_corners_per_press", min_corners_per_press_, 9).range(4, 10000)
+        .doc("a press with fewer corners seen by both cameras is refused");
+    p.add("min_board_tilt_deg", min_board_tilt_deg_, 5.0).unit("deg").range(0, 89)
+        .doc("some press must tilt the board this far from the plate, or mu_silicone is not determined");
+  }
+
+  void declare_ports(PortSet& ports) override {
+    ports.input<MarkerSetPtr>("corners", "one press: corner pixels in both views, id = corner index, matched");
+  }
+
+  void on_check(RunContext&) override {
+    for (double v : board_corners_)
+      if (v != std::floor(v)) throw ParameterError("board_corners", "must be whole numbers [cols, rows]");
+    const std::string ext = std::filesystem::path(output_).extension().string();
+    if (ext != ".yaml" && ext != ".yml")
+      throw ParameterError("output", "'" + output_ + "': a sensor file is YAML (.yaml or .yml)");
+    sensor::load_gelstereo_sensor(sensor_file_);
+  }
+
+  void on_configure(RunContext& ctx) override {
+    on_check(ctx);
+    board_ = {static_cast<int>(board_corners_[0]), static_cast<int>(board_corners_[1]), square_mm_};
+    presses_.clear();
+  }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto& markers = io.input<MarkerSetPtr>("corners");
+    const std::string what = "press " + std::to_string(presses_.size()) + " (input 'corners')";
+    if (!markers) throw InputError(what + ": no marker set");
+    presses_.push_back(calibration::press_corners_from(*markers, board_, what));
+    ctx.metric("press_corners", static_cast<double>(presses_.back().corners.size()));
+  }
+
+  void on_finish(RunContext& ctx) override {
+    if (presses_.empty()) throw InputError("no presses arrived on input 'corners': nothing to calibrate");
+    sensor::GelStereoSensor sensor = sensor::load_gelstereo_sensor(sensor_file_);
+    const optics::StereoRig initial = sensor::make_stereo_rig(sensor, true, lens_distortion_);
+    calibration::PlateCalibrationOptions options;
+    options.spans = distances_ == "all_pairs"          ? calibration::BoardSpans::AllPairs
+                    : distances_ == "rows_and_columns" ? calibration::BoardSpans::RowsAndColumns
+                                                       : calibration::BoardSpans::Neighbours;
+    options.use_diagonals = diagonals_;
+    options.min_corners_per_press = min_corners_per_press_;
+    options.min_board_tilt_deg = min_board_tilt_deg_;
+    const auto result = calibration::calibrate_plate(initial, board_, presses_, options);
+
+    sensor::set_plate_from_left_frame(sensor, result.plate);
+    std::ostringstream comment;
+    comment << "Refractive calibration (touchcloud rsrt_calibration) from " << result.presses << " presses, "
+            << result.corners << " corners of a " << board_.cols << " x " << board_.rows << " board, "
+            << board_.square_mm << " mm squares.\n"
+            << "Initial guess: " << sensor_file_ << "\n"
+            << "Estimated: d_xy = " << result.plate.distance_mm << " mm, mu_silicone = " << result.plate.mu_silicone
+            << "; fixed: mu_air, mu_acrylic, thickness_mm.\n"
+            << "Mean corner-distance error " << result.mean_corner_error_before_mm << " mm before, "
+            << result.mean_corner_error_after_mm << " mm after; " << result.iterations << " iterations; "
+            << result.termination;
+    std::filesystem::path file;
+    try {
+      file = ctx.output_path(output_);
+    } catch (const ParameterError& e) {
+      throw ParameterError("output", e.detail());
+    }
+    sensor::write_gelstereo_sensor(sensor, file, comment.str());
+
+    ctx.metric("mean_corner_error_before_mm", result.mean_corner_error_before_mm, "mm");
+    ctx.metric("mean_corner_error_after_mm", result.mean_corner_error_after_mm, "mm");
+    ctx.metric("d_xy_mm", result.plate.distance_mm, "mm");
+    ctx.metric("plate_tilt_x_deg", sensor.plate.tilt_deg.x(), "deg");
+    ctx.metric("plate_tilt_y_deg", sensor.plate.tilt_deg.y(), "deg");
+    ctx.metric("normal_change_deg", result.normal_change_deg, "deg");
+    ctx.metric("mu_silicone", result.plate.mu_silicone);
+    ctx.metric("sigma_d_xy_mm", result.sigma_d_xy_mm, "mm");
+    ctx.metric("sigma_normal_deg", result.sigma_normal_deg, "deg");
+    ctx.metric("sigma_mu_silicone", result.sigma_mu_silicone);
+    ctx.metric("condition_number", result.condition_number);
+    ctx.metric("max_board_tilt_deg", result.max_board_tilt_deg, "deg");
+    ctx.metric("iterations", result.iterations);
+    ctx.note("termination", result.termination);
+    std::ostringstream s;
+    s << "d_xy " << result.plate.distance_mm << " mm, tilt [" << sensor.plate.tilt_deg.x() << ", "
+      << sensor.plate.tilt_deg.y() << "] deg, mu_silicone " << result.plate.mu_silicone << "; mean corner error "
+      << result.mean_corner_error_before_mm << " -> " << result.mean_corner_error_after_mm << " mm ("
+      << result.iterations << " iterations, " << result.termination << "); wrote " << output_;
+    ctx.log(s.str());
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::RsrtCalibration, "rsrt_calibration",
+                  "Calibrates the plate (d_xy, normal, mu_silicone) from checkerboard presses; writes a sensor file")

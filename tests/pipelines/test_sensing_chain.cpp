@@ -5,10 +5,13 @@
 
 #include <cmath>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "cloud_files.hpp"
 #include "objects/object_surface.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
+#include "touch_simulation.hpp"
 
 using namespace touchcloud;
 namespace fs = std::filesystem;
@@ -161,4 +164,42 @@ TEST(SensingChain, RenderedImagesGiveTheSameContactFrameAndSalientPointsNearTheS
   EXPECT_GT(salient.size(), 20u);
   EXPECT_LT(sum / static_cast<double>(salient.size()), 0.02);
   EXPECT_LT(worst, 0.1);
+}
+
+TEST(SensingChain, RecordedImageFilesGoThroughTheSameChain) {
+  // Image files as a user records them: frame 0 without contact, then the
+  // gel pressed into the fox mask; read with stereo_image_reader.
+  test::TempDir dir;
+  sim::TouchSimulation sim(sim::load_scene(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml"), 3);
+  std::vector<Eigen::Vector3d> truth_sensor;
+  for (int frame = 0, file = 0; file < 3; ++frame) {
+    const auto& f = sim.step({-20, 15}, false);
+    if (frame != 0 && f.travel_past_contact_mm < 1.5 * file) continue;  // rest, then ~1.5 and ~3 mm deep
+    const StereoFrame images = sim.render();
+    ASSERT_TRUE(cv::imwrite((dir / ("left_" + std::to_string(file) + ".png")).string(), images.left));
+    ASSERT_TRUE(cv::imwrite((dir / ("right_" + std::to_string(file) + ".png")).string(), images.right));
+    truth_sensor = f.gel.markers_sensor_mm;
+    ++file;
+  }
+  fs::copy_file(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml", dir / "sensor.yaml");
+  test::write_file(dir / "images.yaml", R"(pipeline: recorded_touch
+stages:
+  - id: frames
+    loop:
+      max_iterations: 3
+      stages:
+        - {id: read, plugin: stereo_image_reader, params: {left: 'left_{iteration}.png', right: 'right_{iteration}.png'}}
+        - {id: detect, plugin: marker_detection, inputs: {frame: read.frame}}
+        - {id: match, plugin: marker_matching, params: {sensor: sensor.yaml}, inputs: {markers: detect.markers}}
+        - {id: rsrt, plugin: rsrt_triangulation, params: {sensor: sensor.yaml}, inputs: {markers: match.markers}}
+  - {id: moved, plugin: saliency, params: {alpha: 0.2, frame: sensor}, inputs: {tactile: rsrt.tactile}}
+  - {id: write, plugin: cloud_writer, params: {path: contact.pcd}, inputs: {cloud: moved.cloud}}
+)");
+  run(dir / "images.yaml", {}, dir / "out");
+  // The last frame's contact patch, sensor frame, against the marker truth.
+  PointCloud truth;
+  for (const auto& p : truth_sensor) truth.push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
+  const PointCloud patch = test::load_cloud(dir / "out/contact.pcd");
+  EXPECT_GT(patch.size(), 10u);
+  EXPECT_LT(mean_nearest_mm(patch, truth), 0.05);
 }

@@ -1,29 +1,56 @@
 // gp_surface: the Gaussian-process surface z = f(x, y) over every touch so
 // far. New touches extend the Cholesky factor (a bordered update); the
 // hyperparameters are selected again, warm-started, only when the training
-// set has grown by `reselect_growth` since the last selection.
+// set has grown by `reselect_growth` since the last selection, on a subset of
+// at most `selection_points` points made of `selection_runs` runs of
+// consecutive points spread over the data (then one fit on all).
+//
+// method: sparse fits a VFE sparse GP (gp/sparse_vfe.hpp) afresh each touch,
+// O(n m^2), on m inducing points: a farthest-point subset of the touches
+// (gp/inducing_points.hpp) whose first point is drawn with the stage's rng;
+// all the points when m >= n, which is then the exact GP. Its
+// hyperparameters are selected with the exact LML on such a subset of at most
+// `inducing_points` points (the VFE bound has no gradient here yet).
+#include <chrono>
+#include <random>
+
 #include "gp/hyperparameter_search.hpp"
+#include "gp/inducing_points.hpp"
 #include "gp_surface_model.hpp"
+#include "sparse_surface_model.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 
 namespace touchcloud {
 
 class GpSurface final : public Stage {
-  std::string kernel_;
+  std::string kernel_, method_;
+  int inducing_points_ = 500;
+  int selection_points_ = 0;
+  int selection_runs_ = 8;
   double reselect_growth_ = 0.5;
   int screening_points_ = 500;
   double initial_lengthscale_mm_ = 10.0;
 
   Eigen::MatrixX2d xy_{0, 2};
   Eigen::VectorXd z_;
-  std::shared_ptr<const gp::ExactGp> gp_;
+  std::shared_ptr<const gp::ExactGp> gp_;  // method exact
+  SurfaceModelPtr sparse_;                  // method sparse: the last fit
   Eigen::Index selected_at_ = 0;  // training size at the last selection (0: none yet)
   gp::Hyperparameters last_;
   int selections_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("kernel", kernel_, std::string("rbf")).choices({"rbf", "matern52"}).doc("covariance function");
+    p.add("method", method_, std::string("exact")).choices({"exact", "sparse"})
+        .doc("exact GP, or the sparse VFE approximation on inducing points");
+    p.add("inducing_points", inducing_points_, 500).at_least(1).unit("points")
+        .doc("method sparse: inducing points, a farthest-point subset of the touches (all when fewer)");
+    p.add("selection_points", selection_points_, 0).at_least(0).unit("points")
+        .doc("select hyperparameters on a subset of at most this many points, then fit all "
+             "(0: all; method sparse: inducing_points)");
+    p.add("selection_runs", selection_runs_, 8).at_least(1)
+        .doc("the subset is this many runs of consecutive points (parts of touches), spread evenly over the data");
     p.add("reselect_growth", reselect_growth_, 0.5).at_least(0.0)
         .doc("select hyperparameters again once the points have grown by this fraction (0: every touch)");
     p.add("screening_points", screening_points_, 500).at_least(0)
@@ -47,20 +74,64 @@ class GpSurface final : public Stage {
     }
   }
 
-  // A fresh model at hyperparameters chosen for all the points.
+  // Hyperparameters for all the points, from a strided subset when asked.
   void select(RunContext& ctx) {
     gp::SearchOptions options;
     options.kernel = gp::kernel_kind_from_string(kernel_);
     options.screening_points = screening_points_;
     if (selected_at_ > 0) options.start_hyperparameters = {last_};
-    const gp::SearchResult r = gp::select_hyperparameters(xy_, z_, options);
-    auto model = std::make_shared<gp::ExactGp>(options.kernel, r.hyperparameters);
-    model->fit(xy_, z_);
-    gp_ = model;
+    const auto started = std::chrono::steady_clock::now();
+    const Eigen::Index n = xy_.rows();
+    const Eigen::Index limit = selection_points_ > 0 ? selection_points_ : (method_ == "sparse" ? inducing_points_ : n);
+    gp::SearchResult r;
+    if (limit >= n) {
+      r = gp::select_hyperparameters(xy_, z_, options);
+    } else {
+      Eigen::MatrixX2d sub_xy(limit, 2);
+      Eigen::VectorXd sub_z(limit);
+      // Runs of consecutive points (parts of single touches) spread evenly
+      // over the data: each run keeps the touches' point density, which the
+      // lengthscale and noise depend on, where an evenly strided subset would
+      // thin every patch and read its fine relief as noise.
+      const Eigen::Index runs = std::max<Eigen::Index>(1, std::min<Eigen::Index>(selection_runs_, limit));
+      Eigen::Index i = 0;
+      for (Eigen::Index r = 0; r < runs; ++r) {
+        const Eigen::Index length = (r + 1) * limit / runs - r * limit / runs, start = r * n / runs;
+        for (Eigen::Index k = 0; k < length; ++k, ++i) {
+          sub_xy.row(i) = xy_.row(start + k);
+          sub_z[i] = z_[start + k];
+        }
+      }
+      r = gp::select_hyperparameters(sub_xy, sub_z, options);
+    }
     last_ = r.hyperparameters;
-    selected_at_ = xy_.rows();
+    selected_at_ = n;
     ++selections_;
     ctx.metric("lml", r.lml);
+    ctx.metric("selection_points", static_cast<double>(std::min(limit, n)), "points");
+    int evaluations = r.evaluations;
+    for (const gp::StartReport& start : r.screening) evaluations += start.evaluations;
+    ctx.metric("selection_evaluations", evaluations);
+    ctx.metric("selection_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), "s");
+  }
+
+  void fit_exact(const gp::Hyperparameters& h) {
+    auto model = std::make_shared<gp::ExactGp>(gp::kernel_kind_from_string(kernel_), h);
+    model->fit(xy_, z_);
+    gp_ = model;
+  }
+
+  SurfaceModelPtr fit_sparse(const gp::Hyperparameters& h, RunContext& ctx) {
+    const Eigen::Index n = xy_.rows();
+    const Eigen::Index first = std::uniform_int_distribution<Eigen::Index>(0, n - 1)(ctx.rng());
+    const std::vector<Eigen::Index> rows = gp::farthest_point_subset(xy_, inducing_points_, first);
+    Eigen::MatrixX2d inducing(static_cast<Eigen::Index>(rows.size()), 2);
+    for (std::size_t i = 0; i < rows.size(); ++i) inducing.row(static_cast<Eigen::Index>(i)) = xy_.row(rows[i]);
+    auto model = std::make_shared<gp::SparseVfeGp>(gp::kernel_kind_from_string(kernel_), h);
+    model->fit(xy_, z_, inducing);
+    ctx.metric("inducing_points", static_cast<double>(inducing.rows()), "points");
+    ctx.metric("vfe_bound", model->log_marginal_likelihood_bound());
+    return std::make_shared<SparseSurfaceModel>(model);
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -71,38 +142,46 @@ class GpSurface final : public Stage {
     const Eigen::Index n = xy_.rows();
     constexpr Eigen::Index kMinSelectionPoints = 3;
     double path = 0;  // 0 unchanged, 1 bordered update, 2 refactorised, 3 hyperparameters selected
+    gp::Hyperparameters h = last_;
     if (n < kMinSelectionPoints) {
       // Too few points to select hyperparameters: a GP at set values.
-      gp::Hyperparameters h;
+      h = {};
       h.lengthscale_mm = initial_lengthscale_mm_;
       h.noise_variance_mm2 = 0.01;
-      auto model = std::make_shared<gp::ExactGp>(gp::kernel_kind_from_string(kernel_), h);
-      model->fit(xy_, z_);
-      gp_ = model;
+      fit_exact(h);  // method sparse too: with no point there is nothing to choose inducing points from
     } else if (selected_at_ == 0 || static_cast<double>(n) >= (1.0 + reselect_growth_) * static_cast<double>(selected_at_)) {
       select(ctx);
+      h = last_;
+      if (method_ == "exact") fit_exact(h);
       path = 3;
-    } else if (n > n0) {
-      auto model = std::make_shared<gp::ExactGp>(*gp_);  // the previous output stays as it was
+    } else if (method_ == "exact" && n > n0) {
+      auto model = std::make_shared<gp::ExactGp>(*gp_);  // shares the factor; the previous output stays as it was
       const gp::UpdateReport report = model->add_points(xy_.bottomRows(n - n0), z_.tail(n - n0));
       path = report.path == gp::UpdatePath::bordered ? 1 : 2;
       if (!report.reason.empty()) ctx.log("refactorised: " + report.reason);
       gp_ = model;
     }
-    const auto& h = gp_->hyperparameters();
+    SurfaceModelPtr surface;
+    if (method_ == "sparse" && n > 0) {
+      if (n > n0 || !sparse_) sparse_ = fit_sparse(h, ctx);
+      surface = sparse_;
+    } else {
+      h = gp_->hyperparameters();
+      ctx.metric("jitter_mm2", gp_->factorisation().jitter_mm2, "mm^2");
+      surface = std::make_shared<GpSurfaceModel>(gp_);
+    }
     ctx.metric("training_points", static_cast<double>(n), "points");
     ctx.metric("update_path", path);
     ctx.metric("lengthscale_mm", h.lengthscale_mm, "mm");
     ctx.metric("signal_variance_mm2", h.signal_variance_mm2, "mm^2");
     ctx.metric("noise_variance_mm2", h.noise_variance_mm2, "mm^2");
-    ctx.metric("jitter_mm2", gp_->factorisation().jitter_mm2, "mm^2");
-    io.output("surface", SurfaceModelPtr(std::make_shared<GpSurfaceModel>(gp_)));
+    io.output("surface", surface);
   }
 
   void on_finish(RunContext& ctx) override {
     ctx.metric("selections", selections_);
     ctx.note("update_path", "per touch: 0 unchanged, 1 bordered Cholesky update, 2 refactorised with jitter, "
-                            "3 hyperparameters selected and refitted");
+                            "3 hyperparameters selected and refitted (method sparse: refitted every touch)");
   }
 };
 

@@ -2,6 +2,11 @@
 
 #include <Eigen/Dense>
 
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+// LAPACK's dpotri (= dtrtri + dlauum, in libopenblas), gfortran calling convention.
+extern "C" void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info, std::size_t uplo_len);
+#endif
+
 namespace touchcloud::gp {
 
 namespace {
@@ -49,6 +54,16 @@ void lower_gram_in_place(Eigen::Ref<Eigen::MatrixXd> m) {
 }
 
 void cholesky_inverse_in_place(Eigen::Ref<Eigen::MatrixXd> m) {
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  if (m.rows() >= 256) {  // as in factor_algebra.cpp: small factors stay on Eigen
+    const int n = static_cast<int>(m.rows()), lda = static_cast<int>(m.outerStride());
+    int info = 0;
+    dpotri_("L", &n, m.data(), &lda, &info, 1);
+    if (info == 0) return;
+    // info > 0: a zero pivot (dtrtri checks before writing, so m is intact);
+    // the recursion below then behaves as without OpenBLAS.
+  }
+#endif
   invert_lower_triangular(m);
   lower_gram_in_place(m);
 }

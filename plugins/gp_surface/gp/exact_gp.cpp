@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 
 #include <Eigen/Dense>
+
+#include "gp/factor_algebra.hpp"
 
 #include "touchcloud/error.hpp"
 
@@ -13,9 +16,34 @@ namespace touchcloud::gp {
 
 std::string to_string(UpdatePath path) { return path == UpdatePath::bordered ? "bordered" : "refactorised"; }
 
+// L for every model of one lineage: rows [0, claimed) were written by the
+// newest model; a model of n points reads only the lower n x n corner.
+struct ExactGp::FactorStore {
+  explicit FactorStore(Eigen::Index capacity) : l(capacity, capacity) {}
+  Eigen::MatrixXd l;  // capacity x capacity
+  std::mutex mutex;   // guards claimed and the candidate cache
+  Eigen::Index claimed = 0;
+  // Candidate cache: rows [0, v_rows) of V = L^-1 K(X, C) for C = candidates_mm.
+  Eigen::MatrixX2d candidates_mm{0, 2};
+  Eigen::MatrixXd v;  // capacity x m
+  Eigen::Index v_rows = 0;
+};
+
 ExactGp::ExactGp(KernelKind kind, const Hyperparameters& h, ExactGpOptions options)
-    : kernel_(kind, h), options_(options) {
+    : kernel_(kind, h), options_(options), store_(std::make_shared<FactorStore>(0)) {
   options_.jitter.validate();
+}
+
+Eigen::Block<Eigen::MatrixXd> ExactGp::factor() { return store_->l.topLeftCorner(n_, n_); }
+Eigen::Block<const Eigen::MatrixXd> ExactGp::factor() const {
+  const Eigen::MatrixXd& l = store_->l;
+  return l.topLeftCorner(n_, n_);
+}
+
+Eigen::Index ExactGp::capacity() const { return store_->l.rows(); }
+
+Eigen::Index ExactGp::capacity_for(Eigen::Index points) const {
+  return points + static_cast<Eigen::Index>(options_.capacity_slack * static_cast<double>(points));
 }
 
 void ExactGp::fit(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm) {
@@ -33,21 +61,21 @@ void ExactGp::fit(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm, co
   x_ = std::move(p.x);
   y_ = std::move(p.y);
   z_ = z_mm.array() - centring_.z_mm;
-  n_ = 0;  // the old factor is not kept
-  ensure_capacity(xy_mm.rows());
   n_ = xy_mm.rows();
   refactorise();
 }
 
 void ExactGp::refactorise() {
   const double noise = kernel_.hyperparameters().noise_variance_mm2;
+  // Never in place: other snapshots may read the current store.
+  store_ = std::make_shared<FactorStore>(std::max(capacity(), capacity_for(n_)));
+  store_->claimed = n_;
   try {
     factorisation_ = factor_with_jitter(
         factor(), [&](Eigen::Ref<Eigen::MatrixXd> a) { kernel_.fill_lower(x_, y_, noise, a); }, options_.jitter,
         "GP surface fit");
   } catch (const RunError&) {
-    // The failed attempts overwrote the factor: fall back to the prior rather
-    // than keep a model that would answer from garbage.
+    // Fall back to the prior rather than keep a model that would answer from garbage.
     n_ = 0;
     x_.resize(0);
     y_.resize(0);
@@ -55,24 +83,46 @@ void ExactGp::refactorise() {
     v_.resize(0);
     alpha_.resize(0);
     factorisation_ = {};
+    store_ = std::make_shared<FactorStore>(0);
     throw;
   }
   v_ = z_;
-  factor().triangularView<Eigen::Lower>().solveInPlace(v_);
+  solve_lower_in_place(factor(), v_);
   alpha_ = v_;
-  factor().triangularView<Eigen::Lower>().transpose().solveInPlace(alpha_);
+  solve_lower_transposed_in_place(factor(), alpha_);
+}
+
+void ExactGp::move_to_new_store(Eigen::Index capacity) {
+  auto grown = std::make_shared<FactorStore>(std::max(capacity, n_));
+  grown->l.topLeftCorner(n_, n_).triangularView<Eigen::Lower>() = factor().triangularView<Eigen::Lower>();
+  grown->claimed = n_;
+  {
+    std::lock_guard<std::mutex> lock(store_->mutex);  // the cache's rows below n_ stay valid for this lineage
+    const Eigen::Index rows = std::min(store_->v_rows, n_);
+    if (rows > 0) {
+      grown->candidates_mm = store_->candidates_mm;
+      grown->v.resize(grown->l.rows(), store_->v.cols());
+      grown->v.topRows(rows) = store_->v.topRows(rows);
+      grown->v_rows = rows;
+    }
+  }
+  store_ = std::move(grown);
 }
 
 void ExactGp::reserve(Eigen::Index points) {
-  if (points <= storage_.rows()) return;
-  Eigen::MatrixXd grown(points, points);
-  grown.topLeftCorner(n_, n_).triangularView<Eigen::Lower>() = factor().triangularView<Eigen::Lower>();
-  storage_.swap(grown);
+  if (points > capacity()) move_to_new_store(points);
 }
 
-void ExactGp::ensure_capacity(Eigen::Index points) {
-  if (points <= storage_.rows()) return;
-  reserve(points + static_cast<Eigen::Index>(options_.capacity_slack * static_cast<double>(points)));
+void ExactGp::claim_rows(Eigen::Index k) {
+  {
+    std::lock_guard<std::mutex> lock(store_->mutex);
+    if (store_->claimed == n_ && n_ + k <= capacity()) {
+      store_->claimed = n_ + k;
+      return;
+    }
+  }
+  move_to_new_store(std::max(capacity(), capacity_for(n_ + k)));
+  store_->claimed = n_ + k;
 }
 
 UpdateReport ExactGp::add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm) {
@@ -87,28 +137,28 @@ UpdateReport ExactGp::add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::Vec
   centring_fixed_ = true;
   const CentredXy p = centre(xy_mm, centring_);
   const Eigen::VectorXd zc = z_mm.array() - centring_.z_mm;
-  ensure_capacity(n + k);
 
   bool extended = false;
   if (n > 0) {
+    claim_rows(k);
     // [L 0; L21 L22] with L21 = K21 L^-T and L22 L22^T = A22 - L21 L21^T
-    // (the Schur complement). The strict upper triangle is free workspace.
+    // (the Schur complement). Columns [n, n + k) above row n are free
+    // workspace: no model reads them.
+    Eigen::MatrixXd& storage = store_->l;
     const double s2 = kernel_.hyperparameters().signal_variance_mm2;
     const double noise = kernel_.hyperparameters().noise_variance_mm2;
-    auto l11 = storage_.topLeftCorner(n, n).triangularView<Eigen::Lower>();
-    auto cross = storage_.block(0, n, n, k);
+    auto cross = storage.block(0, n, n, k);
     kernel_.fill_cross(x_, y_, p.x, p.y, cross);
-    l11.solveInPlace(cross);
-    auto l21 = storage_.block(n, 0, k, n);
+    solve_lower_in_place(storage.topLeftCorner(n, n), cross);
+    auto l21 = storage.block(n, 0, k, n);
     l21 = cross.transpose();
-    auto schur = storage_.block(n, n, k, k);
+    auto schur = storage.block(n, n, k, k);
     kernel_.fill_lower(p.x, p.y, noise + factorisation_.jitter_mm2, schur);
-    schur.selfadjointView<Eigen::Lower>().rankUpdate(l21, -1.0);
-    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(schur);
-    extended = llt.info() == Eigen::Success && pivots_above_rounding(schur, s2 + noise, n + k);
+    subtract_gram_lower(schur, l21);
+    extended = cholesky_lower_in_place(schur) && pivots_above_rounding(schur, s2 + noise, n + k);
     if (extended) {
       Eigen::VectorXd v_new = zc - l21 * v_;
-      schur.triangularView<Eigen::Lower>().solveInPlace(v_new);
+      solve_lower_in_place(schur, v_new);
       v_.conservativeResize(n + k);
       v_.tail(k) = v_new;
     }
@@ -124,7 +174,7 @@ UpdateReport ExactGp::add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::Vec
 
   if (extended) {
     alpha_ = v_;
-    factor().triangularView<Eigen::Lower>().transpose().solveInPlace(alpha_);
+    solve_lower_transposed_in_place(factor(), alpha_);
     report.path = UpdatePath::bordered;
   } else {
     refactorise();
@@ -189,9 +239,34 @@ Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen:
     ex.col(p) = ((xs_mm.array() - centring_.x_mm - x_[p]).square() * c).exp() * alpha_[p];
     ey.col(p) = ((ys_mm.array() - centring_.y_mm - y_[p]).square() * c).exp();
   }
-  Eigen::MatrixXd out = kernel_.hyperparameters().signal_variance_mm2 * (ex * ey.transpose());
+  Eigen::MatrixXd out = kernel_.hyperparameters().signal_variance_mm2 * product_transposed(ex, ey);
   out.array() += centring_.z_mm;
   return out;
+}
+
+void ExactGp::variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd& out) const {
+  FactorStore& store = *store_;
+  std::lock_guard<std::mutex> lock(store.mutex);
+  const Eigen::Index m = xy_mm.rows();
+  if (store.candidates_mm.rows() != m || store.candidates_mm != xy_mm || store.v.rows() != store.l.rows()) {
+    store.candidates_mm = xy_mm;
+    store.v.resize(store.l.rows(), m);
+    store.v_rows = 0;
+  }
+  const Eigen::Index r = store.v_rows;
+  if (r < n_) {
+    // New rows: V2 = L22^-1 (K(X2, C) - L21 V1).
+    const Eigen::Index k = n_ - r;
+    const Eigen::VectorXd qx = xy_mm.col(0).array() - centring_.x_mm;
+    const Eigen::VectorXd qy = xy_mm.col(1).array() - centring_.y_mm;
+    auto v2 = store.v.middleRows(r, k);
+    kernel_.fill_cross(x_.segment(r, k), y_.segment(r, k), qx, qy, v2);
+    const Eigen::MatrixXd& l = store.l;
+    if (r > 0) subtract_product(v2, l.block(r, 0, k, r), store.v.topRows(r));
+    solve_lower_in_place(l.block(r, r, k, k), v2);
+    store.v_rows = n_;
+  }
+  out -= store.v.topRows(n_).colwise().squaredNorm().transpose();
 }
 
 Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count) const {
@@ -201,10 +276,14 @@ Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* cl
   Eigen::VectorXd out = Eigen::VectorXd::Constant(m, prior);
   std::size_t clamped = 0;
   if (n_ > 0 && m > 0) {
-    for_each_cross_block(xy_mm, [&](Eigen::Index b0, CrossBlock kb) {
-      factor().triangularView<Eigen::Lower>().solveInPlace(kb);
-      out.segment(b0, kb.cols()) -= kb.colwise().squaredNorm().transpose();
-    });
+    if (m <= options_.max_cached_candidates) {
+      variance_at_cached(xy_mm, out);
+    } else {
+      for_each_cross_block(xy_mm, [&](Eigen::Index b0, CrossBlock kb) {
+        solve_lower_in_place(factor(), kb);
+        out.segment(b0, kb.cols()) -= kb.colwise().squaredNorm().transpose();
+      });
+    }
     for (Eigen::Index i = 0; i < m; ++i) {
       if (std::isnan(out[i])) {
         std::ostringstream msg;

@@ -3,10 +3,19 @@
 // alpha = A^-1 (z - z0). The mean runs through alpha in query blocks (memory
 // n x block); the variance through L^-1 k_x, only where asked. New touches
 // extend L by a bordered Cholesky update instead of a refactorisation.
+//
+// Copies are cheap snapshots: a bordered update only appends rows to L, so a
+// copy and the model it came from share one append-only factor store; each
+// reads only its own n x n corner, which no later update writes. An update
+// from a model that is not the newest on its store (a second branch) copies
+// the factor first. The variance at a repeated candidate set (the next-touch
+// grid) keeps V = L^-1 K(X, C) in the store and extends it by the new rows
+// only: O(k n m) per touch of k points instead of O(n^2 m).
 #pragma once
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include <Eigen/Core>
@@ -25,6 +34,9 @@ struct ExactGpOptions {
   // Room left for later touches when the factor is (re)allocated, as a
   // fraction of the training size; growing copies the whole factor.
   double capacity_slack = 0.25;
+  // Candidate sets up to this many points have V = L^-1 K(X, C) cached for the
+  // next query of the same set (memory capacity x m doubles).
+  Eigen::Index max_cached_candidates = 1024;
 };
 
 enum class UpdatePath { bordered, refactorised };
@@ -56,6 +68,7 @@ class ExactGp {
 
   // Makes room for `points` training points without reallocating later.
   void reserve(Eigen::Index points);
+  Eigen::Index capacity() const;
 
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy_mm) const;
   // Mean on the grid xs x ys: result(i, j) at (xs[i], ys[j]). The RBF kernel
@@ -64,7 +77,8 @@ class ExactGp {
   // goes through mean().
   Eigen::MatrixXd mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen::VectorXd& ys_mm) const;
   // Latent (noise-free) variance, mm^2, clamped at 0; the number of clamped
-  // values goes to *clamped_count when given.
+  // values goes to *clamped_count when given. Thread-safe, like every const
+  // member; a set asked for again (same points, same order) reuses V.
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
   double log_marginal_likelihood() const;
 
@@ -77,16 +91,22 @@ class ExactGp {
   const Eigen::VectorXd& weights() const { return alpha_; }  // alpha
 
  private:
-  void refactorise();  // from x_, y_, z_ with the jitter schedule
-  void ensure_capacity(Eigen::Index points);
+  struct FactorStore;
+  void refactorise();  // from x_, y_, z_ with the jitter schedule, into a fresh store
+  Eigen::Index capacity_for(Eigen::Index points) const;
+  // Makes this model the only writer of rows [n_, n_ + k) of its store, moving
+  // to a copy of the factor when another model writes there or room is short.
+  void claim_rows(Eigen::Index k);
+  void move_to_new_store(Eigen::Index capacity);
+  void variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd& out) const;
   Eigen::Index query_block() const;
   // Calls f(first query, K(train, block)) over `xy_mm` in blocks of
   // query_block() columns, so memory stays n x block whatever the query count.
   using CrossBlock = Eigen::Block<Eigen::MatrixXd, Eigen::Dynamic, Eigen::Dynamic, true>;
   using CrossBlockFunction = std::function<void(Eigen::Index, CrossBlock)>;
   void for_each_cross_block(const Eigen::MatrixX2d& xy_mm, const CrossBlockFunction& f) const;
-  auto factor() { return storage_.topLeftCorner(n_, n_); }
-  auto factor() const { return storage_.topLeftCorner(n_, n_); }
+  Eigen::Block<Eigen::MatrixXd> factor();
+  Eigen::Block<const Eigen::MatrixXd> factor() const;
 
   Kernel kernel_;
   ExactGpOptions options_;
@@ -94,7 +114,7 @@ class ExactGp {
   bool centring_fixed_ = false;
   Eigen::Index n_ = 0;
   Eigen::VectorXd x_, y_, z_;  // centred
-  Eigen::MatrixXd storage_;    // capacity x capacity; lower n x n corner holds L
+  std::shared_ptr<FactorStore> store_;  // lower n x n corner holds L
   Eigen::VectorXd v_;          // L^-1 (z - z0), kept so updates extend it
   Eigen::VectorXd alpha_;
   CholeskyReport factorisation_;

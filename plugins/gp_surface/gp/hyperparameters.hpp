@@ -18,6 +18,7 @@ struct Hyperparameters {
   double signal_variance_mm2 = 1.0;
   double lengthscale_mm = 1.0;     // isotropic in x and y
   double noise_variance_mm2 = 0.0;  // of the observed z; 0 allowed (jitter takes over)
+  bool operator==(const Hyperparameters&) const = default;
 
   // The values under the names a SurfaceModel reports.
   std::map<std::string, double> named() const;

@@ -4,7 +4,7 @@
 #include <limits>
 #include <sstream>
 
-#include <Eigen/Cholesky>
+#include "gp/factor_algebra.hpp"
 
 #include "touchcloud/error.hpp"
 
@@ -48,8 +48,7 @@ CholeskyReport factor_with_jitter(Eigen::Ref<Eigen::MatrixXd> storage,
     const double relative = attempt == 0 ? 0.0 : schedule.first_relative * std::pow(schedule.growth, attempt - 1);
     const double jitter = relative * mean_diagonal;
     storage.diagonal().array() += jitter;
-    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(storage);
-    if (llt.info() == Eigen::Success && pivots_above_rounding(storage, mean_diagonal, n)) {
+    if (cholesky_lower_in_place(storage) && pivots_above_rounding(storage, mean_diagonal, n)) {
       report.jitter_mm2 = jitter;
       report.jitter_relative = relative;
       report.attempts = attempt + 1;

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "gp/cholesky_inverse.hpp"
+#include "gp/factor_algebra.hpp"
 #include "gp/kernel.hpp"
 #include "gp/training_data.hpp"
 
@@ -28,17 +29,34 @@ LmlEvaluation MarginalLikelihood::evaluate(const Hyperparameters& h, bool with_g
   const Eigen::Index n = x_.size();
   LmlEvaluation out;
   if (n == 0) return out;
-  if (work_.rows() != n) work_.resize(n, n);
+  if (work_.rows() != n) {
+    work_.resize(n, n);
+    factor_held_ = false;
+  }
 
-  out.factorisation = factor_with_jitter(
-      work_, [&](Eigen::Ref<Eigen::MatrixXd> a) { kernel.fill_lower(x_, y_, h.noise_variance_mm2, a); }, jitter_,
-      "GP log marginal likelihood");
-  Eigen::VectorXd alpha = z_;
-  work_.triangularView<Eigen::Lower>().solveInPlace(alpha);
-  work_.triangularView<Eigen::Lower>().transpose().solveInPlace(alpha);
-  out.lml = -0.5 * z_.dot(alpha) - work_.diagonal().array().log().sum() -
-            0.5 * static_cast<double>(n) * std::log(2.0 * std::numbers::pi);
-  if (!with_gradient) return out;
+  Eigen::VectorXd alpha;
+  if (factor_held_ && held_h_ == h) {
+    out = held_;
+    alpha = held_alpha_;
+  } else {
+    factor_held_ = false;  // work_ is about to change
+    out.factorisation = factor_with_jitter(
+        work_, [&](Eigen::Ref<Eigen::MatrixXd> a) { kernel.fill_lower(x_, y_, h.noise_variance_mm2, a); }, jitter_,
+        "GP log marginal likelihood");
+    alpha = z_;
+    solve_lower_in_place(work_, alpha);
+    solve_lower_transposed_in_place(work_, alpha);
+    out.lml = -0.5 * z_.dot(alpha) - work_.diagonal().array().log().sum() -
+              0.5 * static_cast<double>(n) * std::log(2.0 * std::numbers::pi);
+  }
+  if (!with_gradient) {
+    factor_held_ = true;
+    held_h_ = h;
+    held_ = out;
+    held_alpha_ = alpha;
+    return out;
+  }
+  factor_held_ = false;
 
   // work_ now becomes A^-1; kernel values and derivatives are recomputed per
   // column from the distances, so no second n x n buffer is needed.

@@ -37,6 +37,13 @@ class MarginalLikelihood {
   JitterSchedule jitter_;
   Eigen::VectorXd x_, y_, z_;  // centred
   Eigen::MatrixXd work_;       // A, then L, then A^-1 (lower triangles)
+  // The last value-only evaluation, whose L is still in work_: a line search
+  // asks for the gradient at the point it accepts, and that need not factorise
+  // again.
+  bool factor_held_ = false;
+  Hyperparameters held_h_;
+  LmlEvaluation held_;
+  Eigen::VectorXd held_alpha_;
 };
 
 }  // namespace touchcloud::gp

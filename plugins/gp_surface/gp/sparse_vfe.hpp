@@ -5,7 +5,8 @@
 // never exceeds the exact LML, grows when inducing points are added to a set,
 // and equals the exact LML when u is the training set. Unlike FITC it
 // converges to the exact GP as m grows. Needs noise variance > 0.
-// Not here yet: the bound's gradient and hyperparameter selection on it.
+// Not here yet: the bound's gradient and hyperparameter selection on it (the
+// gp_surface stage selects with the exact LML on a subset instead).
 #pragma once
 
 #include <cstddef>
@@ -32,6 +33,7 @@ class SparseVfeGp {
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
 
   Eigen::Index size() const { return n_; }
+  const Hyperparameters& hyperparameters() const { return kernel_.hyperparameters(); }
   Eigen::Index inducing_size() const { return ux_.size(); }
   const CholeskyReport& inducing_factorisation() const { return kuu_report_; }
 

@@ -57,3 +57,27 @@ TEST_F(GpSurfaceStage, ReportsSelectionsAndBorderedUpdates) {
   for (double p : paths) EXPECT_EQ(p, 3);
   for (double l : r.record.metrics.at("fit.lengthscale_mm").values) EXPECT_GT(l, 0);
 }
+
+TEST_F(GpSurfaceStage, SparseWithEveryPointInducingMatchesExact) {
+  // The six patches hold fewer than 1,000 points, so method sparse takes
+  // them all as inducing points and must give the exact stage's surface.
+  run_touches("{kernel: rbf, reselect_growth: 100}", 6);
+  const PointCloud exact = touchcloud::test::load_cloud(dir_ / "out/surface.pcd");
+  const RunResult r = run_touches("{kernel: rbf, reselect_growth: 100, method: sparse, inducing_points: 1000}", 6);
+  const PointCloud sparse = touchcloud::test::load_cloud(dir_ / "out/surface.pcd");
+  ASSERT_EQ(sparse.size(), exact.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) worst = std::max(worst, double(std::abs(sparse[i].z - exact[i].z)));
+  EXPECT_LT(worst, 1e-4);  // float PCD storage of z ~ 10 mm: ulp 1e-6
+  const auto& n = r.record.metrics.at("fit.training_points").values;
+  EXPECT_EQ(r.record.metrics.at("fit.inducing_points").values.back(), n.back());
+}
+
+TEST_F(GpSurfaceStage, SparseWithFewInducingPointsStillFollowsTheSurface) {
+  const RunResult r = run_touches("{kernel: rbf, method: sparse, inducing_points: 60}", 6);
+  EXPECT_EQ(r.record.metrics.at("fit.inducing_points").values.back(), 60);
+  const PointCloud s = touchcloud::test::load_cloud(dir_ / "out/surface.pcd");
+  double worst = 0;
+  for (const auto& p : s.points) worst = std::max(worst, std::abs(p.z - (10 + 3 * std::sin(p.x / 15.0) * std::cos(p.y / 20.0))));
+  EXPECT_LT(worst, 0.2);  // 60 points over a 14 mm square of a 3 mm relief
+}

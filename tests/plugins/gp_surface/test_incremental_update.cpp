@@ -137,3 +137,72 @@ TEST(GpIncrementalUpdate, BadInputChangesNothing) {
 
 }  // namespace
 }  // namespace touchcloud::gp
+
+namespace touchcloud::gp {
+namespace {
+
+// Snapshots share one append-only factor: a copy that is updated must leave
+// the model it was copied from exactly as it was, and two updates from the
+// same model (two branches) must not see each other's points.
+TEST(GpSnapshots, UpdatingACopyLeavesTheOriginalAndBranchesApart) {
+  const Eigen::MatrixX2d xy = test::random_xy(460, 81);
+  const Eigen::VectorXd z = test::heights(xy, 0.05);
+  const Eigen::MatrixX2d q = test::grid_xy(6, 6, 0.0, 60.0);
+  const Hyperparameters h{4.0, 8.0, 0.01};
+  ExactGp a(KernelKind::rbf, h);
+  a.fit(xy.topRows(300), z.head(300));
+  const Eigen::VectorXd a_mean = a.mean(q), a_var = a.variance(q);
+  const Eigen::MatrixXd a_factor = a.cholesky_factor();
+
+  ExactGp b = a, c = a;
+  ASSERT_EQ(b.add_points(xy.middleRows(300, 80), z.segment(300, 80)).path, UpdatePath::bordered);
+  ASSERT_EQ(c.add_points(xy.middleRows(380, 80), z.segment(380, 80)).path, UpdatePath::bordered);  // a second branch
+  EXPECT_EQ(a.mean(q), a_mean);
+  EXPECT_EQ(a.variance(q), a_var);
+  EXPECT_EQ(a.cholesky_factor(), a_factor);
+
+  for (const auto& [model, first] : {std::pair<const ExactGp*, Eigen::Index>{&b, 300}, {&c, 380}}) {
+    Eigen::MatrixX2d batch_xy(380, 2);
+    Eigen::VectorXd batch_z(380);
+    batch_xy << xy.topRows(300), xy.middleRows(first, 80);
+    batch_z << z.head(300), z.segment(first, 80);
+    ExactGp batch(KernelKind::rbf, h);
+    batch.fit(batch_xy, batch_z, a.centring());
+    EXPECT_LT(test::max_relative_difference(model->mean(q), batch.mean(q)), 1e-10) << first;
+    EXPECT_LT((model->variance(q) - batch.variance(q)).cwiseAbs().maxCoeff(), 1e-10) << first;
+  }
+}
+
+// The variance at a repeated candidate set is extended from the cached
+// L^-1 K(X, C) touch by touch; it must equal the variance solved afresh, on
+// the newest model and on older snapshots, also after another set was asked.
+TEST(GpSnapshots, CachedCandidateVarianceEqualsAFreshSolve) {
+  const Eigen::MatrixX2d xy = test::random_xy(520, 82);
+  const Eigen::VectorXd z = test::heights(xy, 0.05);
+  const Eigen::MatrixX2d candidates = test::grid_xy(14, 14, 2.0, 58.0), other = test::grid_xy(5, 5, 0.0, 60.0);
+  const Hyperparameters h{4.0, 8.0, 0.01};
+  ExactGpOptions uncached;
+  uncached.max_cached_candidates = 0;
+  auto fresh_variance = [&](const ExactGp& model, const Eigen::MatrixX2d& at) {
+    ExactGp copy(KernelKind::rbf, h, uncached);
+    copy.fit(xy.topRows(model.size()), z.head(model.size()), model.centring());
+    return copy.variance(at);
+  };
+  std::vector<ExactGp> snapshots;
+  ExactGp gp(KernelKind::rbf, h);
+  gp.fit(xy.topRows(280), z.head(280));
+  gp.variance(candidates);  // fills the cache
+  for (Eigen::Index n = 280; n < 520; n += 60) {
+    ExactGp next = gp;
+    next.add_points(xy.middleRows(n, 60), z.segment(n, 60));
+    snapshots.push_back(gp);
+    gp = next;
+    EXPECT_LT((gp.variance(candidates) - fresh_variance(gp, candidates)).cwiseAbs().maxCoeff(), 1e-12) << n;
+    if (n == 400) EXPECT_LT((gp.variance(other) - fresh_variance(gp, other)).cwiseAbs().maxCoeff(), 1e-12);
+  }
+  for (const ExactGp& old : snapshots)
+    EXPECT_LT((old.variance(candidates) - fresh_variance(old, candidates)).cwiseAbs().maxCoeff(), 1e-12) << old.size();
+}
+
+}  // namespace
+}  // namespace touchcloud::gp

@@ -1,0 +1,266 @@
+// GP surface speed at n = 2,000 points of the fox mask (touch-like samples
+// of its CAD ground truth, sample_clouds/fox_mask/ground_truth.pcd, with
+// 0.05 mm noise):
+//   BM_TouchUpdateAndChoice  one touch of the active loop: snapshot the model,
+//                            add 60 points (bordered update), variance at
+//                            next_touch's 14 x 14 candidates, choose the cell
+//                            (/0: the variance solved afresh, /1: V cached)
+//   BM_ModelSelection        select_hyperparameters as the gp_surface stage
+//                            calls it (cold: three starts; warm: one start)
+// benchmarks/run_gp_bench.sh runs the selection against scikit-learn's
+// GaussianProcessRegressor (benchmarks/peers/gp_sklearn.py) on the same data.
+//
+//   bench_gp [--write-data DIR] [--data-dir DIR] [--lml-at S2,L,NOISE] [Google Benchmark flags]
+//
+// --write-data writes DIR/points.csv (x, y, z in mm) and exits; --data-dir
+// reads it instead of sampling; --lml-at prints our log marginal likelihood
+// of that data at the given hyperparameters (mm^2, mm, mm^2) as JSON and exits.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <pcl/io/pcd_io.h>
+
+#include "gp/exact_gp.hpp"
+#include "gp/factor_algebra.hpp"
+#include "gp/hyperparameter_search.hpp"
+#include "gp/marginal_likelihood.hpp"
+#include "gp_surface_model.hpp"
+#include "touch_choice.hpp"
+
+namespace {
+
+using namespace touchcloud;
+
+constexpr Eigen::Index kTrainingPoints = 2000;
+constexpr Eigen::Index kTouchPoints = 60;
+constexpr int kTouches = 8;  // touches prepared for the update benchmark
+
+struct Samples {
+  Eigen::MatrixX2d xy{0, 2};
+  Eigen::VectorXd z;
+};
+
+std::string g_data_dir;
+
+// All ground-truth points in a random order, with noise: the first
+// kTrainingPoints are the training set, the others feed the touches.
+Samples fox_mask_samples() {
+  pcl::PointCloud<pcl::PointXYZ> gt;
+  const std::string path = std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/fox_mask/ground_truth.pcd";
+  if (pcl::io::loadPCDFile(path, gt) != 0) throw std::runtime_error("cannot read " + path);
+  std::vector<std::size_t> order(gt.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(2024);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  Samples s;
+  s.xy.resize(static_cast<Eigen::Index>(gt.size()), 2);
+  s.z.resize(s.xy.rows());
+  for (Eigen::Index i = 0; i < s.xy.rows(); ++i) {
+    const auto& p = gt[order[static_cast<std::size_t>(i)]];
+    s.xy.row(i) << p.x, p.y;
+    s.z[i] = p.z + noise(rng);
+  }
+  return s;
+}
+
+Samples read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::vector<double> v;
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream row(line);
+    double x, y, z;
+    if (row >> x >> y >> z) v.insert(v.end(), {x, y, z});
+  }
+  Samples s;
+  const Eigen::Index n = static_cast<Eigen::Index>(v.size() / 3);
+  s.xy.resize(n, 2);
+  s.z.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s.xy.row(i) << v[3 * i], v[3 * i + 1];
+    s.z[i] = v[3 * i + 2];
+  }
+  return s;
+}
+
+const Samples& samples() {
+  static const Samples s = fox_mask_samples();
+  return s;
+}
+
+// The selection's data: the file from --data-dir, else the first 2,000 samples.
+Samples selection_data() {
+  if (!g_data_dir.empty()) return read_csv(g_data_dir + "/points.csv");
+  Samples s;
+  s.xy = samples().xy.topRows(kTrainingPoints);
+  s.z = samples().z.head(kTrainingPoints);
+  return s;
+}
+
+WorkspaceGrid fox_mask_grid() {
+  WorkspaceGrid g;
+  g.x_mm = {-60, 60};
+  g.y_mm = {-60, 60};
+  g.cells_x = g.cells_y = 14;
+  return g;
+}
+
+// Touches: the 60 samples nearest each of a few random positions, from those
+// past the first 2,000 (the training set starts a little below that).
+std::vector<Samples> touches() {
+  const Samples& s = samples();
+  std::vector<bool> used(static_cast<std::size_t>(s.xy.rows()), false);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-45.0, 45.0);
+  std::vector<Samples> out;
+  for (int t = 0; t < kTouches; ++t) {
+    const Eigen::RowVector2d c(u(rng), u(rng));
+    std::vector<std::pair<double, Eigen::Index>> by_distance;
+    for (Eigen::Index i = kTrainingPoints; i < s.xy.rows(); ++i)
+      if (!used[static_cast<std::size_t>(i)]) by_distance.emplace_back((s.xy.row(i) - c).squaredNorm(), i);
+    std::partial_sort(by_distance.begin(), by_distance.begin() + kTouchPoints, by_distance.end());
+    Samples touch;
+    touch.xy.resize(kTouchPoints, 2);
+    touch.z.resize(kTouchPoints);
+    for (Eigen::Index k = 0; k < kTouchPoints; ++k) {
+      const Eigen::Index i = by_distance[static_cast<std::size_t>(k)].second;
+      used[static_cast<std::size_t>(i)] = true;
+      touch.xy.row(k) = s.xy.row(i);
+      touch.z[k] = s.z[i];
+    }
+    out.push_back(std::move(touch));
+  }
+  return out;
+}
+
+// Hyperparameters as selected for the fox mask at this size (fixed, so that
+// the update benchmark does not depend on the optimiser).
+const gp::Hyperparameters kFoxMask{40.0, 9.0, 0.003};
+
+void BM_TouchUpdateAndChoice(benchmark::State& state) {
+  gp::ExactGpOptions options;
+  if (state.range(0) == 0) options.max_cached_candidates = 0;
+  const Samples& s = samples();
+  const std::vector<Samples> batch = touches();
+  auto base = std::make_shared<gp::ExactGp>(gp::KernelKind::rbf, kFoxMask, options);
+  // Touches take n from 2,000 - 4 x 60 to 2,000 + 4 x 60: 2,000 on average.
+  const Eigen::Index n0 = kTrainingPoints - kTouches * kTouchPoints / 2;
+  base->fit(s.xy.topRows(n0), s.z.head(n0));
+  base->reserve(n0 + kTouches * kTouchPoints);
+  const WorkspaceGrid grid = fox_mask_grid();
+  max_variance_cell(GpSurfaceModel(base), grid, 1);  // the previous touch's choice (fills the cache)
+
+  std::shared_ptr<const gp::ExactGp> current;
+  int touch = kTouches;
+  double paths = 0;
+  for (auto _ : state) {
+    if (touch == kTouches) {  // back to n = 2,000 on a store of its own
+      state.PauseTiming();
+      auto fresh = std::make_shared<gp::ExactGp>(*base);
+      fresh->reserve(fresh->capacity() + 1);
+      current = fresh;
+      touch = 0;
+      state.ResumeTiming();
+    }
+    // As the gp_surface stage does: the previous snapshot stays unchanged.
+    auto next = std::make_shared<gp::ExactGp>(*current);
+    const gp::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
+                                                     batch[static_cast<std::size_t>(touch)].z);
+    paths += report.path == gp::UpdatePath::bordered ? 1 : 0;
+    const VarianceChoice choice = max_variance_cell(GpSurfaceModel(next), grid, 1);
+    benchmark::DoNotOptimize(choice.cell);
+    current = next;
+    ++touch;
+  }
+  state.counters["n_mean"] = static_cast<double>(n0 + kTouchPoints * (kTouches + 1) / 2);
+  state.counters["bordered_share"] = paths / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_ModelSelection(benchmark::State& state) {
+  const Samples data = selection_data();
+  gp::SearchOptions options;
+  if (state.range(0) == 1) options.start_hyperparameters = {kFoxMask};  // warm start, as between touches
+  gp::SearchResult r;
+  for (auto _ : state) {
+    r = gp::select_hyperparameters(data.xy, data.z, options);
+    benchmark::DoNotOptimize(r.lml);
+  }
+  state.counters["n"] = static_cast<double>(data.xy.rows());
+  state.counters["lml"] = r.lml;
+  state.counters["signal_variance_mm2"] = r.hyperparameters.signal_variance_mm2;
+  state.counters["lengthscale_mm"] = r.hyperparameters.lengthscale_mm;
+  state.counters["noise_variance_mm2"] = r.hyperparameters.noise_variance_mm2;
+  state.counters["full_data_evaluations"] = r.evaluations;
+  int screening_evaluations = 0;
+  for (const auto& start : r.screening) screening_evaluations += start.evaluations;
+  state.counters["subset_evaluations"] = screening_evaluations;
+}
+BENCHMARK(BM_ModelSelection)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+int write_data(const std::string& dir) {
+  const Samples data = selection_data();
+  std::ofstream out(dir + "/points.csv");
+  out << "x_mm,y_mm,z_mm\n";
+  char line[96];
+  for (Eigen::Index i = 0; i < data.xy.rows(); ++i) {
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", data.xy(i, 0), data.xy(i, 1), data.z[i]);
+    out << line;
+  }
+  return out ? 0 : 1;
+}
+
+int print_lml(const std::string& spec) {
+  gp::Hyperparameters h;
+  if (std::sscanf(spec.c_str(), "%lf,%lf,%lf", &h.signal_variance_mm2, &h.lengthscale_mm, &h.noise_variance_mm2) != 3) {
+    std::cerr << "bench_gp: --lml-at wants S2,L,NOISE (mm^2, mm, mm^2), got " << spec << "\n";
+    return 2;
+  }
+  const Samples data = selection_data();
+  gp::MarginalLikelihood lml(gp::KernelKind::rbf, data.xy, data.z);
+  const gp::LmlEvaluation e = lml.evaluate(h, false);
+  std::printf("{\"lml\": %.17g, \"jitter_mm2\": %.17g, \"n\": %ld}\n", e.lml, e.factorisation.jitter_mm2,
+              static_cast<long>(data.xy.rows()));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string write_dir, lml_at;
+  std::vector<char*> rest{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--write-data") && i + 1 < argc) write_dir = argv[++i];
+    else if (!std::strcmp(argv[i], "--data-dir") && i + 1 < argc) g_data_dir = argv[++i];
+    else if (!std::strcmp(argv[i], "--lml-at") && i + 1 < argc) lml_at = argv[++i];
+    else rest.push_back(argv[i]);
+  }
+  try {
+    if (!write_dir.empty()) return write_data(write_dir);
+    if (!lml_at.empty()) return print_lml(lml_at);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_gp: " << e.what() << "\n";
+    return 1;
+  }
+  benchmark::AddCustomContext("gp_linear_algebra", gp::factor_algebra_backend());
+  int rest_argc = static_cast<int>(rest.size());
+  benchmark::Initialize(&rest_argc, rest.data());
+  if (benchmark::ReportUnrecognizedArguments(rest_argc, rest.data())) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

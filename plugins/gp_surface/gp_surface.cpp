@@ -31,6 +31,7 @@ class GpSurface final : public Stage {
   double reselect_growth_ = 0.5;
   int screening_points_ = 500;
   double initial_lengthscale_mm_ = 10.0;
+  double max_noise_mm_ = 1.0;
 
   Eigen::MatrixX2d xy_{0, 2};
   Eigen::VectorXd z_;
@@ -57,6 +58,9 @@ class GpSurface final : public Stage {
         .doc("restarts of the model selection run on a subset of this size (0: all points)");
     p.add("initial_lengthscale_mm", initial_lengthscale_mm_, 10.0).unit("mm").above(0.0)
         .doc("lengthscale while there are too few points to select one");
+    p.add("max_noise_mm", max_noise_mm_, 1.0).unit("mm").above(0.0)
+        .doc("largest noise standard deviation model selection may choose (touch points are accurate to a few "
+             "tenths of a mm); keeps few or rough points from being explained as noise around a flat mean");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
@@ -79,6 +83,7 @@ class GpSurface final : public Stage {
     gp::SearchOptions options;
     options.kernel = gp::kernel_kind_from_string(kernel_);
     options.screening_points = screening_points_;
+    options.bounds.noise_sd_max = max_noise_mm_;
     if (selected_at_ > 0) options.start_hyperparameters = {last_};
     const auto started = std::chrono::steady_clock::now();
     const Eigen::Index n = xy_.rows();

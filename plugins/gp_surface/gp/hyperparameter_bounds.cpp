@@ -68,6 +68,11 @@ void BoundsRules::validate() const {
   }
   check("signal_variance_low", signal_variance_low, "signal_variance_high", signal_variance_high);
   check("noise_variance_low", noise_variance_low, "noise_variance_high", noise_variance_high);
+  if (!(noise_sd_max > 0)) {
+    std::ostringstream msg;
+    msg << "GP hyperparameter bounds: noise_sd_max (" << noise_sd_max << ") must be > 0 (infinite: no cap)";
+    throw InputError(msg.str());
+  }
 }
 
 bool HyperparameterBounds::contains(const Hyperparameters& h) const {
@@ -84,7 +89,9 @@ HyperparameterBounds bounds_from_scales(const DataScales& s, const BoundsRules& 
   b.lower.signal_variance_mm2 = rules.signal_variance_low * s.z_variance_mm2;
   b.upper.signal_variance_mm2 = rules.signal_variance_high * s.z_variance_mm2;
   b.lower.noise_variance_mm2 = rules.noise_variance_low * s.z_variance_mm2;
-  b.upper.noise_variance_mm2 = rules.noise_variance_high * s.z_variance_mm2;
+  b.upper.noise_variance_mm2 = std::max(b.lower.noise_variance_mm2,
+                                        std::min(rules.noise_variance_high * s.z_variance_mm2,
+                                                 rules.noise_sd_max * rules.noise_sd_max));
   return b;
 }
 

@@ -4,6 +4,8 @@
 // x or z (m <-> mm) rescales the bounds the same way.
 #pragma once
 
+#include <limits>
+
 #include <Eigen/Core>
 
 #include "gp/hyperparameters.hpp"
@@ -25,6 +27,10 @@ struct BoundsRules {
   double signal_variance_high = 1e4;
   double noise_variance_low = 1e-8;
   double noise_variance_high = 1.0;
+  // An absolute cap on the noise standard deviation, in the data's units (a
+  // sensor's accuracy): without it, few or rough points can be explained as
+  // all noise around a flat mean. Infinite: no cap.
+  double noise_sd_max = std::numeric_limits<double>::infinity();
   void validate() const;  // InputError naming the field
 };
 

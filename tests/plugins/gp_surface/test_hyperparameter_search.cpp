@@ -47,6 +47,23 @@ TEST(GpHyperparameterSearch, RecoversKnownHyperparameters) {
   EXPECT_TRUE(r.bounds.contains(r.hyperparameters));
 }
 
+// The noise cap (a sensor's accuracy): data that the likelihood prefers to
+// explain as 2 mm noise get at most the capped noise, and the cap is a bound.
+TEST(GpHyperparameterSearch, NoiseCapBoundsTheSelectedNoise) {
+  const Eigen::MatrixX2d xy = random_xy(200, 41);
+  const Eigen::VectorXd z = prior_sample(KernelKind::rbf, {4.0, 1.0, 4.0}, xy, 42);
+  const SearchResult free = select_hyperparameters(xy, z);
+  EXPECT_GT(free.hyperparameters.noise_variance_mm2, 1.0);
+  SearchOptions capped;
+  capped.bounds.noise_sd_max = 0.5;
+  const SearchResult r = select_hyperparameters(xy, z, capped);
+  EXPECT_DOUBLE_EQ(r.bounds.upper.noise_variance_mm2, 0.25);
+  EXPECT_LE(r.hyperparameters.noise_variance_mm2, 0.25);
+  EXPECT_TRUE(std::isfinite(r.lml));
+  capped.bounds.noise_sd_max = 0.0;
+  EXPECT_THROW(select_hyperparameters(xy, z, capped), InputError);
+}
+
 // Case 10: the result is no worse than the first start, than any start point,
 // or than any start's own optimum; it is a local maximum of the LML.
 TEST(GpHyperparameterSearch, NeverWorseThanAnyStartOrRestart) {

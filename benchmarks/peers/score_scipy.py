@@ -18,20 +18,8 @@ import os
 import sys
 import time
 
-
-def blas_in_use():
-    """The BLAS/LAPACK libraries mapped into this process (after importing numpy)."""
-    libs = set()
-    try:
-        with open("/proc/self/maps") as maps:
-            for line in maps:
-                path = line.split()[-1]
-                name = os.path.basename(path)
-                if name.startswith("lib") and any(k in name for k in ("blas", "lapack", "atlas", "mkl")):
-                    libs.add(os.path.realpath(path))
-    except OSError:
-        pass
-    return sorted(libs)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from peer_common import blas_in_use  # noqa: E402
 
 
 def read_pcd_xyz(path, np):

@@ -39,15 +39,11 @@ class MarkerMatching final : public Stage {
   }
 
   void on_check(RunContext&) override {
-    try {
-      sensor::make_stereo_rig(sensor::load_gelstereo_sensor(sensor_file_), true, lens_distortion_);
-    } catch (const InputError& e) {
-      throw ParameterError("sensor", e.what());
-    }
+    sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
   }
 
   void on_configure(RunContext&) override {
-    const auto sensor = sensor::load_gelstereo_sensor(sensor_file_);
+    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
     tracker_ = std::make_unique<matching::StereoMarkerTracker>(
         matching::RestingGelMatcher(sensor::make_stereo_rig(sensor, true, lens_distortion_),
                                     sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()),

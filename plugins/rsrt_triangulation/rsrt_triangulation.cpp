@@ -29,15 +29,11 @@ class RsrtTriangulation final : public Stage {
   }
 
   void on_check(RunContext&) override {
-    try {
-      sensor::make_stereo_rig(sensor::load_gelstereo_sensor(sensor_file_), refraction_, lens_distortion_);
-    } catch (const InputError& e) {
-      throw ParameterError("sensor", e.what());
-    }
+    sensor::load_sensor_parameter(sensor_file_, "sensor", refraction_, lens_distortion_);
   }
 
   void on_configure(RunContext&) override {
-    const auto sensor = sensor::load_gelstereo_sensor(sensor_file_);
+    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", refraction_, lens_distortion_);
     // The pinhole comparison keeps the real rig and ignores its plate.
     triangulator_ = std::make_unique<rsrt::MarkerTriangulator>(sensor::make_stereo_rig(sensor, true, lens_distortion_),
                                                                sensor.sensor_from_left_camera(), refraction_,

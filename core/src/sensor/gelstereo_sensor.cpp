@@ -200,6 +200,17 @@ GelStereoSensor load_gelstereo_sensor(const fs::path& file) {
   return sensor;
 }
 
+GelStereoSensor load_sensor_parameter(const std::string& file, const std::string& parameter, bool refraction,
+                                      bool lens_distortion) {
+  try {
+    GelStereoSensor sensor = load_gelstereo_sensor(file);
+    make_stereo_rig(sensor, refraction, lens_distortion);
+    return sensor;
+  } catch (const InputError& e) {
+    throw ParameterError(parameter, e.what());
+  }
+}
+
 optics::StereoRig make_stereo_rig(const GelStereoSensor& sensor, bool refraction, bool lens_distortion) {
   const Eigen::Isometry3d left_from_sensor = sensor.sensor_from_left_camera().inverse();
   const auto rig = [&] {

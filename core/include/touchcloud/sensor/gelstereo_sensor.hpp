@@ -78,6 +78,11 @@ void read_gelstereo_sensor(config::ConfigFields& fields, config::ConfigProblems&
 // its field and place; a file without a `sensor:` section is an error.
 GelStereoSensor load_gelstereo_sensor(const std::filesystem::path& file);
 
+// The sensor file a stage parameter names, checked by building the rig as
+// make_stereo_rig would; any problem is a ParameterError naming `parameter`.
+GelStereoSensor load_sensor_parameter(const std::string& file, const std::string& parameter, bool refraction,
+                                      bool lens_distortion);
+
 // The two cameras and the plate in the left camera frame. Without
 // `refraction` the plate has equal indices (straight rays: the pinhole
 // model); without `lens_distortion` the distortion coefficients are ignored.

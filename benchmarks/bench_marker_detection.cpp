@@ -110,12 +110,12 @@ void SimpleBlobDetector(benchmark::State& state) {
 }
 
 void DetectorStereoFrame(benchmark::State& state) {
-  MarkerDetector detector{MarkerDetectorOptions{}};
+  StereoMarkerDetector detector{MarkerDetectorOptions{}};
   std::vector<StereoFramePtr> stereo;
   for (const auto& f : frames()) stereo.push_back(std::make_shared<const touchcloud::StereoFrame>(f.frame));
   std::size_t i = 0;
   for (auto _ : state) {
-    const MarkerSet set = detect_stereo_markers(detector, stereo[i++ % stereo.size()]);
+    const MarkerSet set = detector.detect(stereo[i++ % stereo.size()]);
     benchmark::DoNotOptimize(set.left.data());
   }
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);

@@ -58,17 +58,17 @@ void SensingChainPerFrame(benchmark::State& state) {
   const auto& frames = touch_frames();
   const sensor::GelStereoSensor& sensor = scene().sensor;
   const optics::StereoRig rig = sensor::make_stereo_rig(sensor, true, false);
-  MarkerDetector detector{MarkerDetectorOptions{}};
+  StereoMarkerDetector detector{MarkerDetectorOptions{}};
   matching::StereoMarkerTracker tracker(
       matching::RestingGelMatcher(rig, sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()), {});
   rsrt::MarkerTriangulator triangulator(rig, sensor.sensor_from_left_camera(), true, 0.5);
   // The reference frame, outside the timing.
-  triangulator.triangulate(tracker.process(detect_stereo_markers(detector, frames.front())));
+  triangulator.triangulate(tracker.process(detector.detect(frames.front())));
 
   std::size_t i = 1, pairs = 0, frames_timed = 0;
   double deepest_mm = 0;
   for (auto _ : state) {
-    const MarkerSet markers = tracker.process(detect_stereo_markers(detector, frames[i]));
+    const MarkerSet markers = tracker.process(detector.detect(frames[i]));
     const TactileCloud tactile = triangulator.triangulate(markers);
     const double d = tactile.displacement_mm.empty()
                          ? 0.0

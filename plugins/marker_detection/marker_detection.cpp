@@ -13,7 +13,7 @@ class MarkerDetection final : public Stage {
   std::vector<double> diameter_px_;
   double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0;
   int background_window_px_ = 0;
-  std::optional<MarkerDetector> detector_;
+  std::optional<StereoMarkerDetector> detector_;
 
   void declare_parameters(ParameterSet& p) override {
     const MarkerDetectorOptions d;
@@ -66,7 +66,7 @@ class MarkerDetection final : public Stage {
 
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& frame = io.input<StereoFramePtr>("frame");
-    auto markers = std::make_shared<MarkerSet>(detect_stereo_markers(*detector_, frame, "frame"));
+    auto markers = std::make_shared<MarkerSet>(detector_->detect(frame, "frame"));
     ctx.metric("markers_left", static_cast<double>(markers->left.size()), "markers");
     ctx.metric("markers_right", static_cast<double>(markers->right.size()), "markers");
     io.output<MarkerSetPtr>("markers", std::move(markers));

@@ -4,6 +4,8 @@
 #include <mutex>
 #include <tuple>
 
+#include <opencv2/core/utility.hpp>
+
 #include "render/counter_random.hpp"
 
 namespace touchcloud::sim {
@@ -176,18 +178,20 @@ StereoFrame TouchSimulation::render() {
                      " has no 'render' effect: add 'render' to its effects");
   const StereoViews& v = views();
   StereoFrame f;
-  f.left = renderer_left_->render(dots(v.left, 0));
-  f.right = renderer_right_->render(dots(v.right, 1));
   const auto frame = static_cast<std::uint64_t>(frame_.index);
-  // The lens blurs; the sensor then adds its noise.
-  if (scene_.effects.has(Effect::Blur)) {
-    blur_image(f.left, scene_.effect_parameters.blur_sigma_px);
-    blur_image(f.right, scene_.effect_parameters.blur_sigma_px);
-  }
-  if (image_noise_) {
-    image_noise_->apply(f.left, draw_key(noise_seed_, {kImageNoise, frame, 0}));
-    image_noise_->apply(f.right, draw_key(noise_seed_, {kImageNoise, frame, 1}));
-  }
+  // The two cameras side by side (cv::setNumThreads(1) keeps it on one
+  // core); each image's noise is keyed by frame and side alone, so the result
+  // does not depend on the order.
+  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& sides) {
+    for (int side = sides.start; side < sides.end; ++side) {
+      cv::Mat& image = side == 0 ? f.left : f.right;
+      image = (side == 0 ? renderer_left_ : renderer_right_)->render(dots(side == 0 ? v.left : v.right, side));
+      // The lens blurs; the sensor then adds its noise.
+      if (scene_.effects.has(Effect::Blur)) blur_image(image, scene_.effect_parameters.blur_sigma_px);
+      if (image_noise_)
+        image_noise_->apply(image, draw_key(noise_seed_, {kImageNoise, frame, static_cast<std::uint64_t>(side)}));
+    }
+  });
   f.timestamp_s = frame_.timestamp_s;
   f.index = frame_.index;
   f.pose.base_from_sensor = frame_.reported_base_from_sensor;

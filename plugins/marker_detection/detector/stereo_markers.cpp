@@ -1,5 +1,9 @@
 #include "detector/stereo_markers.hpp"
 
+#include <exception>
+
+#include <opencv2/core/utility.hpp>
+
 #include "touchcloud/error.hpp"
 
 namespace touchcloud {
@@ -12,7 +16,7 @@ std::string size_text(const cv::Mat& image) {
 
 }  // namespace
 
-MarkerSet detect_stereo_markers(MarkerDetector& detector, const StereoFramePtr& frame, const std::string& input) {
+MarkerSet StereoMarkerDetector::detect(const StereoFramePtr& frame, const std::string& input) {
   const std::string where = "input '" + input + "'";
   if (!frame) throw InputError(where + ": no stereo frame (null)");
   // Check both images before any work, so the message names the first bad one.
@@ -27,8 +31,17 @@ MarkerSet detect_stereo_markers(MarkerDetector& detector, const StereoFramePtr& 
                      size_text(frame->right));
 
   MarkerSet set;
-  set.left = detector.detect(frame->left, where + ", left image");
-  set.right = detector.detect(frame->right, where + ", right image");
+  std::exception_ptr failed[2];  // an exception must not leave a parallel body
+  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& views) {
+    for (int v = views.start; v < views.end; ++v) try {
+        if (v == 0) set.left = left_.detect(frame->left, where + ", left image");
+        else set.right = right_.detect(frame->right, where + ", right image");
+      } catch (...) {
+        failed[v] = std::current_exception();
+      }
+  });
+  for (const auto& f : failed)
+    if (f) std::rethrow_exception(f);
   set.timestamp_s = frame->timestamp_s;
   return set;
 }

@@ -10,9 +10,9 @@ using namespace touchcloud;
 namespace {
 
 std::string error_of(const StereoFramePtr& frame) {
-  MarkerDetector detector{MarkerDetectorOptions{}};
+  StereoMarkerDetector detector{MarkerDetectorOptions{}};
   try {
-    detect_stereo_markers(detector, frame, "frame");
+    detector.detect(frame, "frame");
   } catch (const InputError& e) {
     return e.what();
   }
@@ -37,8 +37,8 @@ TEST(StereoMarkers, BothViewsAreDetectedUnmatchedWithTheTimestamp) {
   cv::circle(left, {20, 30}, 3, cv::Scalar(40), cv::FILLED);
   cv::circle(left, {50, 30}, 3, cv::Scalar(40), cv::FILLED);
   cv::circle(right, {40, 20}, 3, cv::Scalar(40), cv::FILLED);
-  MarkerDetector detector{MarkerDetectorOptions{}};
-  const MarkerSet set = detect_stereo_markers(detector, frame_of(left, right));
+  StereoMarkerDetector detector{MarkerDetectorOptions{}};
+  const MarkerSet set = detector.detect(frame_of(left, right));
   ASSERT_EQ(set.left.size(), 2u);
   ASSERT_EQ(set.right.size(), 1u);
   EXPECT_LT((set.right[0].centre_px - Eigen::Vector2d(40, 20)).norm(), 0.05);

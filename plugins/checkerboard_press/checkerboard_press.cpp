@@ -21,7 +21,7 @@ class CheckerboardPress final : public Stage {
   std::unique_ptr<optics::StereoRig> rig_;
   Eigen::Isometry3d left_from_sensor_ = Eigen::Isometry3d::Identity();
   double gel_radius_mm_ = 0;
-  board_press::BoardGeometry board_;
+  sensor::Checkerboard board_;
   std::vector<board_press::BoardPose> poses_;
   std::size_t next_ = 0;
 
@@ -52,14 +52,13 @@ class CheckerboardPress final : public Stage {
   }
 
   void on_check(RunContext&) override {
-    for (double v : board_corners_)
-      if (v != std::floor(v)) throw ParameterError("board_corners", "must be whole numbers [cols, rows]");
+    board_ = sensor::Checkerboard::from_parameters(board_corners_, square_mm_);
     if (presses_.size() % 3 != 0)
       throw ParameterError("presses", "has " + std::to_string(presses_.size()) +
                                           " numbers; give [tilt_x_deg, tilt_y_deg, depth_mm] per press");
     if (!(depth_range_mm_[0] <= depth_range_mm_[1]))
       throw ParameterError("depth_range_mm", "must be [min, max] with min <= max");
-    const auto sensor = sensor::load_gelstereo_sensor(sensor_file_);
+    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
     for (std::size_t i = 0; i + 2 < presses_.size(); i += 3) {
       const double depth = presses_[i + 2];
       if (std::abs(presses_[i]) >= 90 || std::abs(presses_[i + 1]) >= 90 || !(depth > 0) ||
@@ -73,11 +72,10 @@ class CheckerboardPress final : public Stage {
 
   void on_configure(RunContext& ctx) override {
     on_check(ctx);
-    const auto sensor = sensor::load_gelstereo_sensor(sensor_file_);
+    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
     rig_ = std::make_unique<optics::StereoRig>(sensor::make_stereo_rig(sensor, true, lens_distortion_));
     left_from_sensor_ = sensor.sensor_from_left_camera().inverse();
     gel_radius_mm_ = sensor.gel.radius_mm();
-    board_ = {static_cast<int>(board_corners_[0]), static_cast<int>(board_corners_[1]), square_mm_};
     poses_.clear();
     for (std::size_t i = 0; i + 2 < presses_.size(); i += 3) {
       board_press::BoardPose pose;

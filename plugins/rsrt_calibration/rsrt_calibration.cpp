@@ -48,17 +48,15 @@ class RsrtCalibration final : public Stage {
   }
 
   void on_check(RunContext&) override {
-    for (double v : board_corners_)
-      if (v != std::floor(v)) throw ParameterError("board_corners", "must be whole numbers [cols, rows]");
+    board_ = sensor::Checkerboard::from_parameters(board_corners_, square_mm_);
     const std::string ext = std::filesystem::path(output_).extension().string();
     if (ext != ".yaml" && ext != ".yml")
       throw ParameterError("output", "'" + output_ + "': a sensor file is YAML (.yaml or .yml)");
-    sensor::load_gelstereo_sensor(sensor_file_);
+    sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
   }
 
   void on_configure(RunContext& ctx) override {
     on_check(ctx);
-    board_ = {static_cast<int>(board_corners_[0]), static_cast<int>(board_corners_[1]), square_mm_};
     presses_.clear();
   }
 

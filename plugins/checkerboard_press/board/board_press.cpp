@@ -8,7 +8,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 }
 
-std::vector<Eigen::Vector3d> board_corners_sensor(const BoardGeometry& board, const BoardPose& pose,
+std::vector<Eigen::Vector3d> board_corners_sensor(const sensor::Checkerboard& board, const BoardPose& pose,
                                                   double gel_radius_mm) {
   const Eigen::Matrix3d r = (Eigen::AngleAxisd(pose.tilt_deg.x() * kDeg, Eigen::Vector3d::UnitX()) *
                              Eigen::AngleAxisd(pose.tilt_deg.y() * kDeg, Eigen::Vector3d::UnitY()) *

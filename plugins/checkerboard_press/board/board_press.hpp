@@ -10,14 +10,10 @@
 #include <Eigen/Geometry>
 
 #include "touchcloud/optics/stereo_rig.hpp"
+#include "touchcloud/sensor/checkerboard.hpp"
 #include "touchcloud/types/marker_set.hpp"
 
 namespace touchcloud::board_press {
-
-struct BoardGeometry {
-  int cols = 8, rows = 6;   // inner corners; corner id = row * cols + col
-  double square_mm = 4.0;
-};
 
 // One press. The board plane is tilted by tilt_deg (about the sensor x axis,
 // then y) and sits depth_mm deep in the gel hemisphere: its distance from the
@@ -31,7 +27,7 @@ struct BoardPose {
 };
 
 // Every inner corner of the board in the sensor frame, by id (row-major).
-std::vector<Eigen::Vector3d> board_corners_sensor(const BoardGeometry& board, const BoardPose& pose,
+std::vector<Eigen::Vector3d> board_corners_sensor(const sensor::Checkerboard& board, const BoardPose& pose,
                                                   double gel_radius_mm);
 
 struct PressImaging {

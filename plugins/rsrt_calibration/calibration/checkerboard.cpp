@@ -6,13 +6,6 @@
 
 namespace touchcloud::calibration {
 
-void Checkerboard::validate() const {
-  if (cols < 2 || rows < 2)
-    throw InputError("board: needs at least 2 x 2 inner corners, got [" + std::to_string(cols) + ", " +
-                     std::to_string(rows) + "] ([cols, rows])");
-  if (!(square_mm > 0)) throw InputError("board: square_mm must be > 0, got " + std::to_string(square_mm));
-}
-
 PressCorners press_corners_from(const MarkerSet& markers, const Checkerboard& board, const std::string& what) {
   PressCorners press;
   std::vector<char> seen(static_cast<std::size_t>(board.corner_count()), 0);

@@ -1,4 +1,4 @@
-// The calibration checkerboard and the corners one press gives: matched
+// The corners one press of the calibration checkerboard gives: matched
 // left/right pixels of the board's inner corners, by corner id.
 #pragma once
 
@@ -6,18 +6,12 @@
 
 #include <Eigen/Core>
 
+#include "touchcloud/sensor/checkerboard.hpp"
 #include "touchcloud/types/marker_set.hpp"
 
 namespace touchcloud::calibration {
 
-struct Checkerboard {
-  int cols = 0, rows = 0;  // inner corners; corner id = row * cols + col
-  double square_mm = 0;    // edge of one square
-
-  int corner_count() const { return cols * rows; }
-  // InputError naming the field when the board makes no sense.
-  void validate() const;
-};
+using sensor::Checkerboard;
 
 struct CornerPair {
   int id = -1;  // corner index, row-major

@@ -21,7 +21,7 @@ sensor::GelStereoSensor true_sensor() {
 }  // namespace
 
 TEST(BoardPress, CornersFormTheBoardAtThePressDepth) {
-  const board_press::BoardGeometry board{5, 4, 3.0};
+  const sensor::Checkerboard board{5, 4, 3.0};
   board_press::BoardPose pose;
   pose.tilt_deg = {20, -10};
   pose.depth_mm = 7;
@@ -42,7 +42,7 @@ TEST(BoardPress, NoiseFreePixelsTriangulateBackOntoTheCorners) {
   const auto truth = true_sensor();
   const auto rig = sensor::make_stereo_rig(truth, true, true);
   const Eigen::Isometry3d left_from_sensor = truth.sensor_from_left_camera().inverse();
-  const board_press::BoardGeometry board{10, 10, 4.0};  // larger than the pressed disc: some corners drop
+  const sensor::Checkerboard board{10, 10, 4.0};  // larger than the pressed disc: some corners drop
   board_press::BoardPose pose;
   pose.tilt_deg = {15, 5};
   pose.depth_mm = 5;

@@ -33,10 +33,9 @@ inline std::vector<calibration::PressCorners> simulate_presses(const sensor::Gel
                                                                double noise_px, std::mt19937_64& rng) {
   const auto rig = sensor::make_stereo_rig(truth, true, true);
   const Eigen::Isometry3d left_from_sensor = truth.sensor_from_left_camera().inverse();
-  const board_press::BoardGeometry board{kBoard.cols, kBoard.rows, kBoard.square_mm};
   std::vector<calibration::PressCorners> presses;
   for (const auto& pose : poses) {
-    const auto corners = board_press::board_corners_sensor(board, pose, truth.gel.radius_mm());
+    const auto corners = board_press::board_corners_sensor(kBoard, pose, truth.gel.radius_mm());
     const auto set = board_press::image_press(rig, left_from_sensor, corners, truth.gel.radius_mm(),
                                               {noise_px, 0.5}, rng);
     presses.push_back(calibration::press_corners_from(*set, kBoard, "test press"));

@@ -126,12 +126,3 @@ void DetectorStereoFrame(benchmark::State& state) {
 BENCHMARK(Detector)->Unit(benchmark::kMillisecond);
 BENCHMARK(SimpleBlobDetector)->Unit(benchmark::kMillisecond);
 BENCHMARK(DetectorStereoFrame)->Unit(benchmark::kMillisecond);
-
-int main(int argc, char** argv) {
-  cv::setNumThreads(1);  // one core
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

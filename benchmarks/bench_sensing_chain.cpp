@@ -54,7 +54,6 @@ const std::vector<StereoFramePtr>& touch_frames() {
 }
 
 void SensingChainPerFrame(benchmark::State& state) {
-  cv::setNumThreads(1);
   const auto& frames = touch_frames();
   const sensor::GelStereoSensor& sensor = scene().sensor;
   const optics::StereoRig rig = sensor::make_stereo_rig(sensor, true, false);
@@ -88,4 +87,3 @@ void SensingChainPerFrame(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(SensingChainPerFrame)->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();

@@ -103,12 +103,3 @@ BENCHMARK_CAPTURE(StereoRender, WithNoiseAndBlur,
                   {Effect::Contact, Effect::Refraction, Effect::Render, Effect::PixelNoise, Effect::Blur})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(RenderOnly)->Unit(benchmark::kMillisecond);
-
-int main(int argc, char** argv) {
-  cv::setNumThreads(1);  // one core
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

@@ -89,7 +89,6 @@ cv::Matx34d projection(const optics::StereoRig& rig, optics::StereoSide side) {
 }
 
 void OpenCvTriangulatePoints(benchmark::State& state) {
-  cv::setNumThreads(1);
   const PairData& d = pairs();
   const cv::Matx34d p_left = projection(*d.rig, optics::StereoSide::Left);
   const cv::Matx34d p_right = projection(*d.rig, optics::StereoSide::Right);
@@ -117,4 +116,3 @@ void OpenCvTriangulatePoints(benchmark::State& state) {
 BENCHMARK(Rsrt)->Unit(benchmark::kMicrosecond);
 BENCHMARK(PinholeMidpoint)->Unit(benchmark::kMicrosecond);
 BENCHMARK(OpenCvTriangulatePoints)->Unit(benchmark::kMicrosecond);
-BENCHMARK_MAIN();

@@ -101,6 +101,7 @@ std::string scene_yaml(const SampleObject& object) {
     << "  fps: 30\n"
     << "robot:\n"
     << "  speed_mm_s: 6\n"
+    << "  approach_speed_mm_s: 30\n"
     << "  press_depth_mm: 1.5\n"
     << "  safe_clearance_mm: 2\n"
     << "  max_contact_depth_mm: 10\n"

@@ -37,7 +37,7 @@ double robot_value(double param, double scene_value, const char* name, bool posi
 
 class TouchSimulator final : public Stage {
   std::string scene_file_;
-  double speed_mm_s_ = -1, press_depth_mm_ = -1, safe_clearance_mm_ = -1, max_contact_depth_mm_ = -1;
+  double speed_mm_s_ = -1, approach_speed_mm_s_ = -1, press_depth_mm_ = -1, safe_clearance_mm_ = -1, max_contact_depth_mm_ = -1;
   std::vector<double> target_xy_mm_;
 
   std::unique_ptr<sim::TouchSimulation> sim_;
@@ -46,7 +46,10 @@ class TouchSimulator final : public Stage {
 
   void declare_parameters(ParameterSet& p) override {
     p.add("scene", scene_file_, std::string()).input_file().doc("scene file (YAML): object, sensor, robot, effects");
-    p.add("speed_mm_s", speed_mm_s_, -1.0).unit("mm/s").at_least(-1).doc("descent speed; -1: the scene's");
+    p.add("speed_mm_s", speed_mm_s_, -1.0).unit("mm/s").at_least(-1)
+        .doc("descent speed once the gel touches; -1: the scene's");
+    p.add("approach_speed_mm_s", approach_speed_mm_s_, -1.0).unit("mm/s").at_least(-1)
+        .doc("descent speed until the first frame with contact (0: speed_mm_s); -1: the scene's");
     p.add("press_depth_mm", press_depth_mm_, -1.0).unit("mm").at_least(-1)
         .doc("further press after stable contact; -1: the scene's");
     p.add("safe_clearance_mm", safe_clearance_mm_, -1.0).unit("mm").at_least(-1)
@@ -74,6 +77,7 @@ class TouchSimulator final : public Stage {
     sim::Scene scene = sim::load_scene(scene_file_);
     sim::RobotSpec& r = scene.robot;
     r.speed_mm_s = robot_value(speed_mm_s_, r.speed_mm_s, "speed_mm_s", true);
+    r.approach_speed_mm_s = robot_value(approach_speed_mm_s_, r.approach_speed_mm_s, "approach_speed_mm_s", false);
     r.press_depth_mm = robot_value(press_depth_mm_, r.press_depth_mm, "press_depth_mm", false);
     r.safe_clearance_mm = robot_value(safe_clearance_mm_, r.safe_clearance_mm, "safe_clearance_mm", false);
     r.max_contact_depth_mm = robot_value(max_contact_depth_mm_, r.max_contact_depth_mm, "max_contact_depth_mm", true);

@@ -33,7 +33,7 @@ TouchStep TouchMotion::next(const Eigen::Vector2d& target_xy_mm, double start_he
     }
     ++frame_;
     pressed_ = previous_stable;
-    height_ -= previous_stable ? robot_.press_depth_mm : step_mm_;
+    height_ -= previous_stable ? robot_.press_depth_mm : first_contact_ ? step_mm_ : approach_step_mm_;
   }
   TouchStep step;
   step.touch = touch_;

@@ -1,8 +1,9 @@
 // The robot's touch, one camera frame at a time. The sensor faces down
 // (base_from_sensor = translation(x, y, h) * rotation of 180 deg about x);
 // a touch starts with the gel's apex `safe_clearance_mm` above the highest
-// object point under the gel, descends along -z_B by speed / fps per frame
-// and, on the frame after the pipeline reports a stable contact, presses
+// object point under the gel, descends along -z_B by approach_speed / fps per
+// frame until a frame in which the gel touches the object, then by speed /
+// fps, and, on the frame after the pipeline reports a stable contact, presses
 // `press_depth_mm` further: that frame is the recorded one, and the touch ends.
 #pragma once
 
@@ -27,7 +28,10 @@ Eigen::Isometry3d downward_sensor_pose(const Eigen::Vector2d& xy_mm, double heig
 
 class TouchMotion {
  public:
-  TouchMotion(const RobotSpec& robot, double fps) : robot_(robot), step_mm_(robot.speed_mm_s / fps) {}
+  TouchMotion(const RobotSpec& robot, double fps)
+      : robot_(robot),
+        step_mm_(robot.speed_mm_s / fps),
+        approach_step_mm_((robot.approach_speed_mm_s > 0 ? robot.approach_speed_mm_s : robot.speed_mm_s) / fps) {}
 
   bool touching() const { return touching_; }
   // The next frame. A touch starts (at `start_height_mm`, the sensor origin's
@@ -45,7 +49,7 @@ class TouchMotion {
 
  private:
   RobotSpec robot_;
-  double step_mm_;
+  double step_mm_, approach_step_mm_;
   bool touching_ = false;
   int touch_ = -1, frame_ = 0;
   bool pressed_ = false;

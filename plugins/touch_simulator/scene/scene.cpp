@@ -70,6 +70,7 @@ void read_workspace(ConfigFields& f, Workspace& w) {
 
 void read_robot(ConfigFields& f, RobotSpec& robot) {
   robot.speed_mm_s = f.number("speed_mm_s", robot.speed_mm_s, FieldRule::Positive);
+  robot.approach_speed_mm_s = f.number("approach_speed_mm_s", robot.approach_speed_mm_s, FieldRule::NonNegative);
   robot.press_depth_mm = f.number("press_depth_mm", robot.press_depth_mm, FieldRule::NonNegative);
   robot.safe_clearance_mm = f.number("safe_clearance_mm", robot.safe_clearance_mm, FieldRule::NonNegative);
   robot.max_contact_depth_mm = f.number("max_contact_depth_mm", robot.max_contact_depth_mm, FieldRule::Positive);

@@ -34,7 +34,11 @@ struct ObjectSpec {
 using Workspace = WorkspaceGrid;
 
 struct RobotSpec {
-  double speed_mm_s = 6.0;             // descent speed
+  double speed_mm_s = 6.0;             // descent speed once the gel touches
+  // Descent speed before the gel first touches (a guarded move: the robot
+  // stops its fast approach on the first frame the sensor feels contact);
+  // 0: speed_mm_s all the way.
+  double approach_speed_mm_s = 0.0;
   double press_depth_mm = 1.5;         // further press after stable contact
   double safe_clearance_mm = 2.0;      // gel apex above the highest point under the gel
   double max_contact_depth_mm = 10.0;  // past first contact without stability: error

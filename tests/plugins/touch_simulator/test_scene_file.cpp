@@ -84,6 +84,7 @@ TEST(SceneFile, NonPositiveSizesAreNamed) {
            {"sensor: {cameras: {baseline_mm: -30}}", "sensor.cameras.baseline_mm: -30 must be > 0"},
            {"sensor: {cameras: {left: {fx_px: 0}}}", "sensor.cameras.left.fx_px: 0 must be > 0"},
            {"robot: {speed_mm_s: 0}", "robot.speed_mm_s: 0 must be > 0"},
+           {"robot: {approach_speed_mm_s: -1}", "robot.approach_speed_mm_s: -1 must be >= 0"},
        }) {
     const std::string m = input_error([&] { plane_scene(dir, "[]", extra); });
     EXPECT_TRUE(has(m, field)) << extra << " -> " << m;

@@ -49,6 +49,13 @@ const std::string kSink =
     "          plugin: test_sim_sink\n"
     "          inputs: {frame: sim.frame, markers: sim.markers, pose: sim.pose}\n";
 
+// The share of markers pressed onto the plane (z = 10 mm).
+double share_on_plane(const PointCloud& truth) {
+  std::size_t on_plane = 0;
+  for (const auto& p : truth) on_plane += p.z < 10.0 + 1e-4;
+  return static_cast<double>(on_plane) / static_cast<double>(truth.size());
+}
+
 class TouchPipeline : public touchcloud::test::PipelineFixture {
  protected:
   void scene(const std::string& effects) {
@@ -101,7 +108,8 @@ TEST_F(TouchPipeline, APlaneTouchSettlesWhereEquationsTwoAndThreeSayAndRecordsMa
     }
   }
   // The cap holds its share of the dome's area, p / R, of the evenly spread markers.
-  EXPECT_NEAR(static_cast<double>(on_plane) / truth.size(), kPenetrationMm / kGelRadiusMm, 0.015);
+  EXPECT_NEAR(share_on_plane(truth), kPenetrationMm / kGelRadiusMm, 0.015);
+  EXPECT_GT(on_plane, 0u);
 }
 
 TEST_F(TouchPipeline, APipelineThatReadsOnlyTactileCloudsRendersAndProjectsNothing) {
@@ -155,6 +163,27 @@ TEST_F(TouchPipeline, ATouchWithoutStableContactFailsSayingWhere) {
     EXPECT_NE(m.find("past first contact"), std::string::npos) << m;
     EXPECT_NE(m.find("max_contact_depth_mm = 10"), std::string::npos) << m;
   }
+}
+
+TEST_F(TouchPipeline, AFastApproachSlowsAtFirstContactAndEndsInTheSamePress) {
+  // At 30 mm/s (1 mm per frame) the apex is 1.1 and 0.1 mm above the plane
+  // at frames 1 and 2 and 0.9 mm into it at frame 3, the first contact; from
+  // there on 0.2 mm per frame: more than 2 mm from frame 9, stable at frame
+  // 19, pressed at frame 20, 0.9 + 16 * 0.2 + 1.5 = 5.6 mm into the plane,
+  // as deep as after the slow approach but in 21 frames instead of 33.
+  scene("[contact]");
+  const RunResult r = run(loop(kTarget, kFromContact, kContactStage) + kWriteTruth, 1,
+                          {{"sim.approach_speed_mm_s", "30"}});
+  EXPECT_EQ(r.loop_iterations.at(0).second, 21);
+  EXPECT_EQ(metric(r, "contact.frames_to_stable"), 20);
+  EXPECT_NEAR(metric(r, "sim.press_travel_mm"), 5.6 - 0.9, 1e-9);
+  // The cap holds its share of the dome's area, p / R, of the evenly spread markers.
+  EXPECT_NEAR(share_on_plane(touchcloud::test::load_cloud(last_out_ / "truth.pcd")), kPenetrationMm / kGelRadiusMm,
+              0.015);
+  // 0 keeps the descent speed all the way: the slow touch of the test above.
+  EXPECT_EQ(run(loop(kTarget, kFromContact, kContactStage), 1, {{"sim.approach_speed_mm_s", "0"}})
+                .loop_iterations.at(0).second,
+            kFramesPerTouch);
 }
 
 TEST_F(TouchPipeline, RobotParametersOverrideTheScene) {

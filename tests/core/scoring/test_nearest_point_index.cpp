@@ -1,9 +1,11 @@
 // NearestPointIndex: hand-checkable distances, exact agreement with a brute
-// force scan on random clouds (also across the per-thread slabs), results
-// independent of the thread count, refusals of empty and non-finite input.
+// force scan on random clouds, beside median cuts, far above a sampled
+// surface and among sparse outliers; results independent of the thread
+// count; refusals of empty and non-finite input.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "random_points.hpp"
 #include "touchcloud/error.hpp"
@@ -26,8 +28,8 @@ TEST(NearestPointIndex, HandCheckedDistances) {
 }
 
 TEST(NearestPointIndex, MatchesBruteForceOnRandomClouds) {
-  // 200k points: enough for two slabs (one per thread), so queries near the
-  // cut between them are covered too; queries reach beyond the box.
+  // 200k points: enough for the index to be built on several threads;
+  // queries reach beyond the box.
   const Points cloud = test::random_points(200000, 100.0, 1);
   const Points queries = test::random_points(1500, 130.0, 2);
   std::vector<double> reference;
@@ -41,9 +43,9 @@ TEST(NearestPointIndex, MatchesBruteForceOnRandomClouds) {
   }
 }
 
-TEST(NearestPointIndex, QueriesAlongTheSlabCutMatchBruteForce) {
-  // Points on a line along x: slabs are cut in x; queries sit just beside
-  // the cut, where the nearest point lies in the other slab.
+TEST(NearestPointIndex, QueriesBesideTheMedianCutMatchBruteForce) {
+  // Points on a line along x: the first cut is at the median in x; queries
+  // sit just beside it, where the nearest point may lie on the other side.
   Points line;
   for (int i = 0; i < 300000; ++i) line.emplace_back(i * 0.001, 0.0, 0.0);
   const NearestPointIndex index(line, 2);
@@ -52,6 +54,37 @@ TEST(NearestPointIndex, QueriesAlongTheSlabCutMatchBruteForce) {
   const std::vector<double> d = index.nearest_distances(queries, 2);
   for (std::size_t i = 0; i < queries.size(); ++i)
     EXPECT_LE(test::relative_error(d[i], test::brute_force_nearest(queries[i], line)), 1e-9) << i;
+}
+
+TEST(NearestPointIndex, FarAboveASampledSurfaceMatchesBruteForceExactly) {
+  // A flat square sampled 0.1 mm apart with a bump, as a CAD mesh's samples
+  // are: queries 10 mm above and 7 mm below it, and beyond its edge, are the
+  // searches the clusters' boxes prune; singly and in a batch (warm starts).
+  Points surface = test::random_points(100000, 30.0, 7);
+  for (auto& p : surface) p.z() = 2.0 * std::exp(-(p.x() * p.x() + p.y() * p.y()) / 50.0);
+  Points queries;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      for (double z : {10.0, -7.0}) queries.emplace_back(-20.0 + i * 1.4, -20.0 + j * 1.4, z);
+  const NearestPointIndex index(surface, 2);
+  const std::vector<double> batch = index.nearest_distances(queries, 2);
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const double reference = test::brute_force_nearest(queries[i], surface);
+    ASSERT_EQ(batch[i], reference) << i;
+    ASSERT_EQ(index.nearest_distance(queries[i]), reference) << i;
+  }
+}
+
+TEST(NearestPointIndex, SparseOutliersBesideADenseCloudMatchBruteForce) {
+  // A dense ball and a few lone points far from it and from each other: the
+  // clusters holding them are wide, and are cut again.
+  Points cloud = test::random_points(20000, 2.0, 8);
+  const Points outliers = test::random_points(40, 400.0, 9);
+  cloud.insert(cloud.end(), outliers.begin(), outliers.end());
+  const Points queries = test::random_points(3000, 500.0, 10);
+  const NearestPointIndex index(cloud);
+  const std::vector<double> d = index.nearest_distances(queries);
+  for (std::size_t i = 0; i < queries.size(); ++i) ASSERT_EQ(d[i], test::brute_force_nearest(queries[i], cloud)) << i;
 }
 
 TEST(NearestPointIndex, SameDistancesWhateverTheThreadCount) {

@@ -4,9 +4,15 @@
 //   BM_TouchUpdateAndChoice  one touch of the active loop: snapshot the model,
 //                            add 60 points (bordered update), variance at
 //                            next_touch's 14 x 14 candidates, choose the cell
-//                            (/0: the variance solved afresh, /1: V cached)
-//   BM_ModelSelection        select_hyperparameters as the gp_surface stage
-//                            calls it (cold: three starts; warm: one start)
+//                            (/0: the variance solved afresh, /1: V cached;
+//                            /2: as /1, then the mean on the 200 x 200 grid
+//                            that the main job scores each touch, which also
+//                            solves the weights alpha = A^-1 z)
+//   BM_ModelSelection        select_hyperparameters: /0 from scikit-learn's one
+//                            start (like for like with the peer), /1 from the
+//                            three default starts (the stage's cold selection),
+//                            /2 warm-started from the optimum and curvature on
+//                            the first 90 % of the points (as between touches)
 // benchmarks/run_gp_bench.sh runs the selection against scikit-learn's
 // GaussianProcessRegressor (benchmarks/peers/gp_sklearn.py) on the same data.
 //
@@ -34,6 +40,7 @@
 #include "gp/factor_algebra.hpp"
 #include "gp/hyperparameter_search.hpp"
 #include "gp/marginal_likelihood.hpp"
+#include "gp/vector_exp.hpp"
 #include "gp_surface_model.hpp"
 #include "touch_choice.hpp"
 
@@ -163,6 +170,9 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
   base->reserve(n0 + kTouches * kTouchPoints);
   const WorkspaceGrid grid = fox_mask_grid();
   max_variance_cell(GpSurfaceModel(base), grid, 1);  // the previous touch's choice (fills the cache)
+  // The surface_sampler's 200 x 200 evaluation grid over the workspace.
+  const Eigen::VectorXd grid_xs = Eigen::VectorXd::LinSpaced(200, grid.x_mm[0], grid.x_mm[1]);
+  const Eigen::VectorXd grid_ys = Eigen::VectorXd::LinSpaced(200, grid.y_mm[0], grid.y_mm[1]);
 
   std::shared_ptr<const gp::ExactGp> current;
   int touch = kTouches;
@@ -183,18 +193,28 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
     paths += report.path == gp::UpdatePath::bordered ? 1 : 0;
     const VarianceChoice choice = max_variance_cell(GpSurfaceModel(next), grid, 1);
     benchmark::DoNotOptimize(choice.cell);
+    if (state.range(0) == 2) benchmark::DoNotOptimize(next->mean_on_grid(grid_xs, grid_ys).sum());
     current = next;
     ++touch;
   }
   state.counters["n_mean"] = static_cast<double>(n0 + kTouchPoints * (kTouches + 1) / 2);
   state.counters["bordered_share"] = paths / static_cast<double>(state.iterations());
 }
-BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_ModelSelection(benchmark::State& state) {
   const Samples data = selection_data();
   gp::SearchOptions options;
-  if (state.range(0) == 1) options.start_hyperparameters = {kFoxMask};  // warm start, as between touches
+  if (state.range(0) == 0) {  // benchmarks/peers/gp_sklearn.py's start: var(z), 10 mm, var(z) / 100
+    const double var_z = (data.z.array() - data.z.mean()).square().mean();
+    options.start_hyperparameters = {{var_z, 10.0, var_z / 100.0}};
+  }
+  if (state.range(0) == 2) {  // as between touches: the optimum and curvature on 90 % of the points
+    const Eigen::Index earlier = data.xy.rows() * 9 / 10;
+    const gp::SearchResult previous = gp::select_hyperparameters(data.xy.topRows(earlier), data.z.head(earlier));
+    options.start_hyperparameters = {previous.hyperparameters};
+    options.start_hessian_per_point = previous.hessian_per_point;
+  }
   gp::SearchResult r;
   for (auto _ : state) {
     r = gp::select_hyperparameters(data.xy, data.z, options);
@@ -206,11 +226,15 @@ void BM_ModelSelection(benchmark::State& state) {
   state.counters["lengthscale_mm"] = r.hyperparameters.lengthscale_mm;
   state.counters["noise_variance_mm2"] = r.hyperparameters.noise_variance_mm2;
   state.counters["full_data_evaluations"] = r.evaluations;
+  state.counters["full_data_gradients"] = r.gradient_evaluations;
+  int refinement_evaluations = 0;
+  for (const auto& level : r.refinement) refinement_evaluations += level.evaluations;
+  state.counters["refinement_evaluations"] = refinement_evaluations;
   int screening_evaluations = 0;
   for (const auto& start : r.screening) screening_evaluations += start.evaluations;
   state.counters["subset_evaluations"] = screening_evaluations;
 }
-BENCHMARK(BM_ModelSelection)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_ModelSelection)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 int write_data(const std::string& dir) {
   const Samples data = selection_data();
@@ -257,6 +281,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   benchmark::AddCustomContext("gp_linear_algebra", gp::factor_algebra_backend());
+  benchmark::AddCustomContext("gp_vector_exp", gp::vector_exp_path());
   int rest_argc = static_cast<int>(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());
   if (benchmark::ReportUnrecognizedArguments(rest_argc, rest.data())) return 2;

@@ -1,9 +1,11 @@
 // gp_surface: the Gaussian-process surface z = f(x, y) over every touch so
 // far. New touches extend the Cholesky factor (a bordered update); the
-// hyperparameters are selected again, warm-started, only when the training
-// set has grown by `reselect_growth` since the last selection, on a subset of
-// at most `selection_points` points made of `selection_runs` runs of
-// consecutive points spread over the data (then one fit on all).
+// hyperparameters are selected again only when the training set has grown by
+// `reselect_growth` since the last selection, on a subset of at most
+// `selection_points` points made of `selection_runs` runs of consecutive
+// points spread over the data (then one fit on all). Each selection after the
+// first is warm-started from the last optimum and its curvature: a few
+// quasi-Newton steps, and a single gradient when the optimum has not moved.
 //
 // method: sparse fits a VFE sparse GP (gp/sparse_vfe.hpp) afresh each touch,
 // O(n m^2), on m inducing points: a farthest-point subset of the touches
@@ -16,6 +18,7 @@
 
 #include "gp/hyperparameter_search.hpp"
 #include "gp/inducing_points.hpp"
+#include "gp/point_subset.hpp"
 #include "gp_surface_model.hpp"
 #include "sparse_surface_model.hpp"
 #include "touchcloud/plugin.hpp"
@@ -39,6 +42,7 @@ class GpSurface final : public Stage {
   SurfaceModelPtr sparse_;                  // method sparse: the last fit
   Eigen::Index selected_at_ = 0;  // training size at the last selection (0: none yet)
   gp::Hyperparameters last_;
+  Eigen::Matrix2d last_curvature_ = Eigen::Matrix2d::Zero();  // its hessian_per_point, for the next warm start
   int selections_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
@@ -78,44 +82,34 @@ class GpSurface final : public Stage {
     }
   }
 
-  // Hyperparameters for all the points, from a strided subset when asked.
+  // Hyperparameters for all the points, from a subset when asked; warm-started
+  // (with the last selection's curvature) after the first.
   void select(RunContext& ctx) {
     gp::SearchOptions options;
     options.kernel = gp::kernel_kind_from_string(kernel_);
     options.screening_points = screening_points_;
     options.bounds.noise_sd_max = max_noise_mm_;
-    if (selected_at_ > 0) options.start_hyperparameters = {last_};
+    options.stop_gain = 1e-6;  // hyperparameters to ~0.1 %: the surface cannot tell them apart
+    if (selected_at_ > 0) {
+      options.start_hyperparameters = {last_};
+      options.start_hessian_per_point = last_curvature_;
+    }
     const auto started = std::chrono::steady_clock::now();
     const Eigen::Index n = xy_.rows();
     const Eigen::Index limit = selection_points_ > 0 ? selection_points_ : (method_ == "sparse" ? inducing_points_ : n);
-    gp::SearchResult r;
-    if (limit >= n) {
-      r = gp::select_hyperparameters(xy_, z_, options);
-    } else {
-      Eigen::MatrixX2d sub_xy(limit, 2);
-      Eigen::VectorXd sub_z(limit);
-      // Runs of consecutive points (parts of single touches) spread evenly
-      // over the data: each run keeps the touches' point density, which the
-      // lengthscale and noise depend on, where an evenly strided subset would
-      // thin every patch and read its fine relief as noise.
-      const Eigen::Index runs = std::max<Eigen::Index>(1, std::min<Eigen::Index>(selection_runs_, limit));
-      Eigen::Index i = 0;
-      for (Eigen::Index r = 0; r < runs; ++r) {
-        const Eigen::Index length = (r + 1) * limit / runs - r * limit / runs, start = r * n / runs;
-        for (Eigen::Index k = 0; k < length; ++k, ++i) {
-          sub_xy.row(i) = xy_.row(start + k);
-          sub_z[i] = z_[start + k];
-        }
-      }
-      r = gp::select_hyperparameters(sub_xy, sub_z, options);
-    }
+    // Runs of consecutive points (parts of single touches) spread evenly
+    // over the data keep the touches' point density (gp/point_subset.hpp).
+    const auto [sub_xy, sub_z] = gp::subset_of_runs(xy_, z_, limit, selection_runs_);
+    const gp::SearchResult r = gp::select_hyperparameters(sub_xy, sub_z, options);
     last_ = r.hyperparameters;
+    last_curvature_ = r.hessian_per_point;
     selected_at_ = n;
     ++selections_;
     ctx.metric("lml", r.lml);
     ctx.metric("selection_points", static_cast<double>(std::min(limit, n)), "points");
     int evaluations = r.evaluations;
     for (const gp::StartReport& start : r.screening) evaluations += start.evaluations;
+    for (const gp::StartReport& level : r.refinement) evaluations += level.evaluations;
     ctx.metric("selection_evaluations", evaluations);
     ctx.metric("selection_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), "s");
   }

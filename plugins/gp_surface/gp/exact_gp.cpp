@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "gp/factor_algebra.hpp"
+#include "gp/vector_exp.hpp"
 
 #include "touchcloud/error.hpp"
 
@@ -23,14 +24,19 @@ struct ExactGp::FactorStore {
   Eigen::MatrixXd l;  // capacity x capacity
   std::mutex mutex;   // guards claimed and the candidate cache
   Eigen::Index claimed = 0;
-  // Candidate cache: rows [0, v_rows) of V = L^-1 K(X, C) for C = candidates_mm.
+  // Candidate cache: rows [0, v_rows) of V = L^-1 K(X, C) for C = candidates_mm,
+  // and the squared norms of its columns over those rows.
   Eigen::MatrixX2d candidates_mm{0, 2};
   Eigen::MatrixXd v;  // capacity x m
   Eigen::Index v_rows = 0;
+  Eigen::RowVectorXd v_norms;
 };
 
 ExactGp::ExactGp(KernelKind kind, const Hyperparameters& h, ExactGpOptions options)
-    : kernel_(kind, h), options_(options), store_(std::make_shared<FactorStore>(0)) {
+    : kernel_(kind, h),
+      options_(options),
+      store_(std::make_shared<FactorStore>(0)),
+      weights_(std::make_shared<Weights>()) {
   options_.jitter.validate();
 }
 
@@ -81,15 +87,14 @@ void ExactGp::refactorise() {
     y_.resize(0);
     z_.resize(0);
     v_.resize(0);
-    alpha_.resize(0);
+    weights_ = std::make_shared<Weights>();
     factorisation_ = {};
     store_ = std::make_shared<FactorStore>(0);
     throw;
   }
   v_ = z_;
   solve_lower_in_place(factor(), v_);
-  alpha_ = v_;
-  solve_lower_transposed_in_place(factor(), alpha_);
+  weights_ = std::make_shared<Weights>();
 }
 
 void ExactGp::move_to_new_store(Eigen::Index capacity) {
@@ -104,6 +109,7 @@ void ExactGp::move_to_new_store(Eigen::Index capacity) {
       grown->v.resize(grown->l.rows(), store_->v.cols());
       grown->v.topRows(rows) = store_->v.topRows(rows);
       grown->v_rows = rows;
+      grown->v_norms = rows == store_->v_rows ? store_->v_norms : grown->v.topRows(rows).colwise().squaredNorm();
     }
   }
   store_ = std::move(grown);
@@ -142,16 +148,14 @@ UpdateReport ExactGp::add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::Vec
   if (n > 0) {
     claim_rows(k);
     // [L 0; L21 L22] with L21 = K21 L^-T and L22 L22^T = A22 - L21 L21^T
-    // (the Schur complement). Columns [n, n + k) above row n are free
-    // workspace: no model reads them.
+    // (the Schur complement). K21 is written straight into the new rows and
+    // solved there from the right: no transposed copy.
     Eigen::MatrixXd& storage = store_->l;
     const double s2 = kernel_.hyperparameters().signal_variance_mm2;
     const double noise = kernel_.hyperparameters().noise_variance_mm2;
-    auto cross = storage.block(0, n, n, k);
-    kernel_.fill_cross(x_, y_, p.x, p.y, cross);
-    solve_lower_in_place(storage.topLeftCorner(n, n), cross);
     auto l21 = storage.block(n, 0, k, n);
-    l21 = cross.transpose();
+    kernel_.fill_cross(p.x, p.y, x_, y_, l21);
+    solve_right_lower_transposed_in_place(storage.topLeftCorner(n, n), l21);
     auto schur = storage.block(n, n, k, k);
     kernel_.fill_lower(p.x, p.y, noise + factorisation_.jitter_mm2, schur);
     subtract_gram_lower(schur, l21);
@@ -173,8 +177,7 @@ UpdateReport ExactGp::add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::Vec
   n_ = n + k;
 
   if (extended) {
-    alpha_ = v_;
-    solve_lower_transposed_in_place(factor(), alpha_);
+    weights_ = std::make_shared<Weights>();
     report.path = UpdatePath::bordered;
   } else {
     refactorise();
@@ -211,7 +214,7 @@ Eigen::VectorXd ExactGp::mean(const Eigen::MatrixX2d& xy_mm) const {
   const Eigen::Index m = xy_mm.rows();
   Eigen::VectorXd out = Eigen::VectorXd::Constant(m, centring_.z_mm);
   for_each_cross_block(xy_mm, [&](Eigen::Index b0, CrossBlock kb) {
-    out.segment(b0, kb.cols()).noalias() += kb.transpose() * alpha_;
+    out.segment(b0, kb.cols()).noalias() += kb.transpose() * weights();
   });
   return out;
 }
@@ -234,10 +237,14 @@ Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen:
   }
   // exp(-(dx^2 + dy^2) / 2l^2) = exp(-dx^2 / 2l^2) exp(-dy^2 / 2l^2).
   const double l = kernel_.hyperparameters().lengthscale_mm, c = -0.5 / (l * l);
+  const Eigen::VectorXd& alpha = weights();
   Eigen::MatrixXd ex(nx, n_), ey(ny, n_);
   for (Eigen::Index p = 0; p < n_; ++p) {
-    ex.col(p) = ((xs_mm.array() - centring_.x_mm - x_[p]).square() * c).exp() * alpha_[p];
-    ey.col(p) = ((ys_mm.array() - centring_.y_mm - y_[p]).square() * c).exp();
+    ex.col(p).array() = (xs_mm.array() - centring_.x_mm - x_[p]).square() * c;
+    exp_in_place(ex.col(p).array());
+    ex.col(p) *= alpha[p];
+    ey.col(p).array() = (ys_mm.array() - centring_.y_mm - y_[p]).square() * c;
+    exp_in_place(ey.col(p).array());
   }
   Eigen::MatrixXd out = kernel_.hyperparameters().signal_variance_mm2 * product_transposed(ex, ey);
   out.array() += centring_.z_mm;
@@ -252,6 +259,7 @@ void ExactGp::variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd&
     store.candidates_mm = xy_mm;
     store.v.resize(store.l.rows(), m);
     store.v_rows = 0;
+    store.v_norms = Eigen::RowVectorXd::Zero(m);
   }
   const Eigen::Index r = store.v_rows;
   if (r < n_) {
@@ -264,9 +272,14 @@ void ExactGp::variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd&
     const Eigen::MatrixXd& l = store.l;
     if (r > 0) subtract_product(v2, l.block(r, 0, k, r), store.v.topRows(r));
     solve_lower_in_place(l.block(r, r, k, k), v2);
+    store.v_norms += v2.colwise().squaredNorm();
     store.v_rows = n_;
   }
-  out -= store.v.topRows(n_).colwise().squaredNorm().transpose();
+  // An older snapshot (fewer rows than the cache holds) sums its own rows.
+  if (store.v_rows == n_)
+    out -= store.v_norms.transpose();
+  else
+    out -= store.v.topRows(n_).colwise().squaredNorm().transpose();
 }
 
 Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count) const {
@@ -302,8 +315,17 @@ Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* cl
 
 double ExactGp::log_marginal_likelihood() const {
   if (n_ == 0) return 0.0;
-  return -0.5 * z_.dot(alpha_) - factor().diagonal().array().log().sum() -
+  return -0.5 * v_.squaredNorm() - factor().diagonal().array().log().sum() -
          0.5 * static_cast<double>(n_) * std::log(2.0 * std::numbers::pi);
+}
+
+const Eigen::VectorXd& ExactGp::weights() const {
+  Weights& w = *weights_;
+  std::call_once(w.once, [&] {
+    w.alpha = v_;
+    solve_lower_transposed_in_place(factor(), w.alpha);
+  });
+  return w.alpha;
 }
 
 Eigen::MatrixXd ExactGp::cholesky_factor() const { return factor().triangularView<Eigen::Lower>(); }

@@ -1,8 +1,9 @@
 // Exact Gaussian-process surface z = f(x, y) in mm, at fixed hyperparameters.
-// Keeps the Cholesky factor L of A = K + (s^2 + c) I (c: jitter, if needed) and
-// alpha = A^-1 (z - z0). The mean runs through alpha in query blocks (memory
-// n x block); the variance through L^-1 k_x, only where asked. New touches
-// extend L by a bordered Cholesky update instead of a refactorisation.
+// Keeps the Cholesky factor L of A = K + (s^2 + c) I (c: jitter, if needed),
+// v = L^-1 (z - z0) and, once the mean is asked for, alpha = A^-1 (z - z0).
+// The mean runs through alpha in query blocks (memory n x block); the
+// variance through L^-1 k_x, only where asked. New touches extend L by a
+// bordered Cholesky update instead of a refactorisation.
 //
 // Copies are cheap snapshots: a bordered update only appends rows to L, so a
 // copy and the model it came from share one append-only factor store; each
@@ -16,6 +17,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include <Eigen/Core>
@@ -88,7 +90,10 @@ class ExactGp {
   const Centring& centring() const { return centring_; }
   const CholeskyReport& factorisation() const { return factorisation_; }
   Eigen::MatrixXd cholesky_factor() const;         // L, n x n, zero above the diagonal
-  const Eigen::VectorXd& weights() const { return alpha_; }  // alpha
+  // alpha = A^-1 (z - z0), solved on the first call after a fit or update (a
+  // triangular solve over all of L, n^2 flops reading the whole factor: the
+  // next-touch choice does not need it, the mean does). Thread-safe.
+  const Eigen::VectorXd& weights() const;
 
  private:
   struct FactorStore;
@@ -116,7 +121,13 @@ class ExactGp {
   Eigen::VectorXd x_, y_, z_;  // centred
   std::shared_ptr<FactorStore> store_;  // lower n x n corner holds L
   Eigen::VectorXd v_;          // L^-1 (z - z0), kept so updates extend it
-  Eigen::VectorXd alpha_;
+  // alpha for this state of the model, solved once when first asked; copies
+  // share it until either changes (then it is replaced, never modified).
+  struct Weights {
+    std::once_flag once;
+    Eigen::VectorXd alpha;
+  };
+  std::shared_ptr<Weights> weights_;
   CholeskyReport factorisation_;
 };
 

@@ -29,6 +29,9 @@ void eigen_solve(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::M
 void eigen_solve_transposed(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::VectorXd> b) {
   l.triangularView<Eigen::Lower>().transpose().solveInPlace(b);
 }
+void eigen_solve_right_transposed(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b) {
+  l.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(b);
+}
 void eigen_subtract_gram(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a) {
   c.selfadjointView<Eigen::Lower>().rankUpdate(a, -1.0);
 }
@@ -78,6 +81,18 @@ void solve_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l,
   }
 #endif
   eigen_solve_transposed(l, b);
+}
+
+void solve_right_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b) {
+  if (b.rows() == 0 || b.cols() == 0) return;
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  if (l.rows() >= kOpenBlasFromRows) {
+    cblas_dtrsm(CblasColMajor, CblasRight, CblasLower, CblasTrans, CblasNonUnit, as_int(b.rows()), as_int(b.cols()),
+                1.0, l.data(), as_int(l.outerStride()), b.data(), as_int(b.outerStride()));
+    return;
+  }
+#endif
+  eigen_solve_right_transposed(l, b);
 }
 
 void subtract_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a) {

@@ -18,6 +18,8 @@ bool cholesky_lower_in_place(Eigen::Ref<Eigen::MatrixXd> a);
 void solve_lower_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b);
 // b <- L^-T b.
 void solve_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::VectorXd> b);
+// b <- b L^-T (the rows of b solved against L: b's transpose gets L^-1 b^T).
+void solve_right_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b);
 
 // Lower triangle of c -= a a^T.
 void subtract_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a);

@@ -2,90 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
 
-#include <ceres/first_order_function.h>
-#include <ceres/gradient_problem.h>
-#include <ceres/gradient_problem_solver.h>
-
 #include "gp/marginal_likelihood.hpp"
+#include "gp/point_subset.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud::gp {
-
-namespace {
-
-double sigmoid(double u) {
-  if (u >= 0) return 1.0 / (1.0 + std::exp(-u));
-  const double e = std::exp(u);
-  return e / (1.0 + e);
-}
-
-// What one start saw: its first evaluation and the best one.
-struct StartTrace {
-  int evaluations = 0, failed = 0;
-  bool first_seen = false;
-  double first_lml = kNoLml;
-  double best_lml = kNoLml;
-  LogHyperparameters best_theta = LogHyperparameters::Zero();
-};
-
-// -LML in the mapped coordinates u, theta = lo + span * sigmoid(u).
-class BoundedNegativeLml final : public ceres::FirstOrderFunction {
- public:
-  BoundedNegativeLml(const LmlFunction& f, const Eigen::Vector3d& lo, const Eigen::Vector3d& span, StartTrace& trace)
-      : f_(f), lo_(lo), span_(span), trace_(trace) {}
-
-  bool Evaluate(const double* u, double* cost, double* gradient) const override {
-    ++trace_.evaluations;
-    Eigen::Vector3d s, theta;
-    for (int i = 0; i < 3; ++i) {
-      s[i] = sigmoid(u[i]);
-      theta[i] = lo_[i] + span_[i] * s[i];
-    }
-    double lml = 0.0;
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    const bool ok = f_(theta, lml, gradient ? &g : nullptr) && std::isfinite(lml) && g.allFinite();
-    if (!trace_.first_seen) {
-      trace_.first_seen = true;
-      trace_.first_lml = ok ? lml : kNoLml;
-    }
-    if (!ok) {
-      ++trace_.failed;
-      return false;
-    }
-    if (lml > trace_.best_lml) {
-      trace_.best_lml = lml;
-      trace_.best_theta = theta;
-    }
-    *cost = -lml;
-    if (gradient)
-      for (int i = 0; i < 3; ++i) gradient[i] = -g[i] * span_[i] * s[i] * (1.0 - s[i]);
-    return true;
-  }
-  int NumParameters() const override { return 3; }
-
- private:
-  const LmlFunction& f_;
-  Eigen::Vector3d lo_, span_;
-  StartTrace& trace_;
-};
-
-// u for a start theta, kept a little inside the box so sigmoid' is not zero.
-Eigen::Vector3d to_mapped(const LogHyperparameters& theta, const Eigen::Vector3d& lo, const Eigen::Vector3d& span) {
-  Eigen::Vector3d u = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 3; ++i) {
-    if (span[i] <= 0) continue;
-    const double f = std::clamp((theta[i] - lo[i]) / span[i], 1e-6, 1.0 - 1e-6);
-    u[i] = std::log(f / (1.0 - f));
-  }
-  return u;
-}
-
-}  // namespace
 
 void SearchOptions::validate() const {
   auto fail = [](const std::string& what) { throw InputError("GP hyperparameter search: " + what); };
@@ -97,9 +22,45 @@ void SearchOptions::validate() const {
   if (max_iterations < 1) fail("max_iterations = " + std::to_string(max_iterations) + " must be >= 1");
   if (!(function_tolerance > 0)) fail("function_tolerance must be > 0");
   if (!(gradient_tolerance > 0)) fail("gradient_tolerance must be > 0");
+  if (!(stop_gain > 0) || !(stop_gain < 1e-2)) fail("stop_gain must be in (0, 0.01)");
   for (double l : start_lengthscales_mm)
     if (!(l > 0) || !std::isfinite(l)) fail("start lengthscale " + std::to_string(l) + " mm must be finite and > 0");
 }
+
+namespace {
+
+LbfgsSettings lbfgs_settings(const SearchOptions& options) {
+  return {options.max_iterations, options.function_tolerance, options.gradient_tolerance};
+}
+
+StartReport report_of(const BoxRun& run, const std::function<Hyperparameters(const Eigen::VectorXd&)>& at) {
+  StartReport r;
+  r.start = at(run.start);
+  r.start_lml = run.start_value;
+  r.lml = run.best_value;
+  r.result = at(run.best);
+  r.iterations = run.iterations;
+  r.evaluations = run.evaluations;
+  r.gradient_evaluations = run.gradient_evaluations;
+  r.failed_evaluations = run.failed_evaluations;
+  r.solver_report = run.report;
+  return r;
+}
+
+void add_run(SearchResult& result, StartReport report) {
+  result.iterations += report.iterations;
+  result.evaluations += report.evaluations;
+  result.gradient_evaluations += report.gradient_evaluations;
+  result.failed_evaluations += report.failed_evaluations;
+  if (report.lml > result.lml) {
+    result.lml = report.lml;
+    result.hyperparameters = report.result;
+    result.best_start = result.starts.size();
+  }
+  result.starts.push_back(std::move(report));
+}
+
+}  // namespace
 
 SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& bounds,
                           const std::vector<Hyperparameters>& starts, const SearchOptions& options) {
@@ -108,45 +69,17 @@ SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& boun
   const LogHyperparameters lo = to_log(bounds.lower), hi = to_log(bounds.upper);
   if (!lo.allFinite() || !hi.allFinite() || !(hi.array() >= lo.array()).all())
     throw InputError("GP hyperparameter search: bounds must be finite, positive and lower <= upper");
-  const Eigen::Vector3d span = hi - lo;
-
-  ceres::GradientProblemSolver::Options solver;
-  solver.line_search_direction_type = ceres::LBFGS;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = options.gradient_tolerance;
-  solver.logging_type = ceres::SILENT;
-  solver.minimizer_progress_to_stdout = false;
-
+  const BoxObjective objective = [&f](const Eigen::VectorXd& x, double& value, Eigen::VectorXd* gradient) {
+    Eigen::Vector3d g;
+    if (!f(x, value, gradient ? &g : nullptr)) return false;
+    if (gradient) *gradient = g;
+    return true;
+  };
+  const auto at = [](const Eigen::VectorXd& x) { return from_log(x); };
   SearchResult result;
   result.bounds = bounds;
-  for (const Hyperparameters& start : starts) {
-    StartTrace trace;
-    ceres::GradientProblem problem(new BoundedNegativeLml(f, lo, span, trace));
-    const Eigen::Vector3d u = to_mapped(to_log(start), lo, span);
-    Eigen::Vector3d u_final = u;
-    ceres::GradientProblemSolver::Summary summary;
-    ceres::Solve(solver, problem, u_final.data(), &summary);
-
-    StartReport report;
-    report.start = from_log(lo + span.cwiseProduct(u.unaryExpr(&sigmoid)));  // as evaluated
-    report.start_lml = trace.first_lml;
-    report.lml = trace.best_lml;
-    report.result = trace.best_lml > kNoLml ? from_log(trace.best_theta) : start;
-    report.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
-    report.evaluations = trace.evaluations;
-    report.failed_evaluations = trace.failed;
-    report.solver_report = summary.BriefReport();
-    result.iterations += report.iterations;
-    result.evaluations += report.evaluations;
-    result.failed_evaluations += report.failed_evaluations;
-    if (report.lml > result.lml) {
-      result.lml = report.lml;
-      result.hyperparameters = report.result;
-      result.best_start = result.starts.size();
-    }
-    result.starts.push_back(std::move(report));
-  }
+  for (const Hyperparameters& start : starts)
+    add_run(result, report_of(lbfgs_in_box(objective, lo, hi, to_log(start), lbfgs_settings(options)), at));
   result.initial_lml = result.starts.front().start_lml;
   if (!(result.lml > kNoLml)) {
     std::ostringstream msg;
@@ -158,21 +91,6 @@ SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& boun
 }
 
 namespace {
-
-// Wraps the exact likelihood as an LmlFunction; keeps the last failure's text.
-LmlFunction exact_lml(MarginalLikelihood& likelihood, std::string& last_failure) {
-  return [&likelihood, &last_failure](const LogHyperparameters& theta, double& lml, Eigen::Vector3d* gradient) {
-    try {
-      const LmlEvaluation e = likelihood.evaluate(from_log(theta), gradient != nullptr);
-      lml = e.lml;
-      if (gradient) *gradient = e.gradient;
-      return true;
-    } catch (const RunError& error) {
-      last_failure = error.what();
-      return false;
-    }
-  };
-}
 
 Hyperparameters clamp_into(const Hyperparameters& h, const HyperparameterBounds& b) {
   return {std::clamp(h.signal_variance_mm2, b.lower.signal_variance_mm2, b.upper.signal_variance_mm2),
@@ -198,91 +116,82 @@ std::vector<Hyperparameters> start_points(const SearchOptions& options, const Da
   return starts;
 }
 
-// Polish of a subset optimum on the full data: quasi-Newton steps in log
-// space whose first Hessian is the subset's (finite differences of its
-// analytic gradient, 1/8 of a full evaluation each at half the data), scaled
-// by n / subset size, as the LML is a sum over points; BFGS updates it from
-// the full-data gradients. Near the optimum a step or three suffice where
-// L-BFGS, which starts from the identity, takes about ten. A step is kept
-// only when the LML rises (Armijo, halving up to 6 times), so the result is
-// never worse than the start. Returns a result with no starts when the
-// subset Hessian is not negative definite or the start cannot be evaluated;
-// the caller then runs L-BFGS.
-SearchResult newton_polish(const LmlFunction& f, const LmlFunction& f_subset, double scale, const Hyperparameters& start,
-                           double start_lml, const HyperparameterBounds& bounds, const SearchOptions& options) {
-  SearchResult result;
-  result.bounds = bounds;
-  const LogHyperparameters lo = to_log(bounds.lower), hi = to_log(bounds.upper);
-  auto clamp_log = [&](LogHyperparameters t) { return LogHyperparameters(t.cwiseMax(lo).cwiseMin(hi)); };
-  LogHyperparameters theta = clamp_log(to_log(start));
+// The profiled search space: x = (log lengthscale, log g), g = noise / s2,
+// with g's range wide enough for every (s2, noise) in the bounds.
+struct ProfileBox {
+  Eigen::Vector2d lo, hi;
+  explicit ProfileBox(const HyperparameterBounds& b)
+      : lo(std::log(b.lower.lengthscale_mm), std::log(b.lower.noise_variance_mm2 / b.upper.signal_variance_mm2)),
+        hi(std::log(b.upper.lengthscale_mm), std::log(b.upper.noise_variance_mm2 / b.lower.signal_variance_mm2)) {}
+  Eigen::VectorXd of(const Hyperparameters& h) const {
+    const Eigen::Vector2d x(std::log(h.lengthscale_mm), std::log(h.noise_variance_mm2 / h.signal_variance_mm2));
+    return x.cwiseMax(lo).cwiseMin(hi);
+  }
+};
 
-  // Hessian of -LML on the subset, scaled to the full data.
+// The profiled LML of one data set as a BoxObjective; keeps the last failure's
+// text and the hyperparameters (s2 at its best) of each point evaluated.
+class Profile {
+ public:
+  Profile(KernelKind kind, const Eigen::MatrixX2d& xy, const Eigen::VectorXd& z, const HyperparameterBounds& bounds,
+          const JitterSchedule& jitter)
+      : likelihood_(kind, xy, z, jitter), bounds_(bounds) {}
+
+  BoxObjective objective() {
+    return [this](const Eigen::VectorXd& x, double& value, Eigen::VectorXd* gradient) {
+      try {
+        const ProfiledEvaluation e =
+            likelihood_.evaluate_profiled(std::exp(x[0]), std::exp(x[1]), bounds_, gradient != nullptr);
+        value = e.lml;
+        if (gradient) *gradient = e.gradient;
+        seen_.emplace_back(x, e.hyperparameters);
+        return true;
+      } catch (const RunError& error) {
+        last_failure = error.what();
+        return false;
+      }
+    };
+  }
+  // The hyperparameters at a point: as evaluated, or (l, g) with s2 = 1 for a
+  // point that could not be.
+  Hyperparameters at(const Eigen::VectorXd& x) const {
+    for (const auto& [point, h] : seen_)
+      if (point == x) return h;
+    return {1.0, std::exp(x[0]), std::exp(x[1])};
+  }
+  std::string last_failure;
+
+ private:
+  MarginalLikelihood likelihood_;
+  HyperparameterBounds bounds_;
+  std::vector<std::pair<Eigen::VectorXd, Hyperparameters>> seen_;
+};
+
+// -Hessian of the profile at x by forward differences of its gradient, or an
+// empty matrix when it is not positive definite there (or cannot be evaluated).
+Eigen::MatrixXd negative_hessian(const BoxObjective& f, const Eigen::VectorXd& x) {
   constexpr double kStep = 1e-4;
   double value = 0;
-  Eigen::Vector3d g0, gi;
-  if (!f_subset(theta, value, &g0)) return result;
-  Eigen::Matrix3d b;  // approximates the Hessian of -LML
-  for (int i = 0; i < 3; ++i) {
-    LogHyperparameters t = theta;
-    t[i] += kStep;
-    if (!f_subset(t, value, &gi)) return result;
-    b.col(i) = -(gi - g0) / kStep * scale;
+  Eigen::VectorXd g0, gi;
+  if (!f(x, value, &g0)) return {};
+  Eigen::MatrixXd b(x.size(), x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::VectorXd xi = x;
+    xi[i] += kStep;
+    if (!f(xi, value, &gi)) return {};
+    b.col(i) = -(gi - g0) / kStep;
   }
   b = 0.5 * (b + b.transpose()).eval();
-  if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(b).eigenvalues().minCoeff() <= 0) return result;
-
-  StartReport report;
-  report.start = from_log(theta);
-  double lml = kNoLml;
-  Eigen::Vector3d g;
-  ++report.evaluations;
-  if (!f(theta, lml, &g)) return result;  // reuses the factor of the candidate evaluation
-  report.start_lml = lml;
-  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
-    const Eigen::Vector3d direction = b.ldlt().solve(g);  // ascent: B d = grad LML
-    const LogHyperparameters target = clamp_log(theta + direction);
-    const Eigen::Vector3d step = target - theta;
-    const double predicted = g.dot(step);
-    if (!(predicted > options.function_tolerance * std::max(1.0, std::abs(lml)))) break;
-    double t = 1.0, trial_lml = kNoLml;
-    bool accepted = false;
-    for (int halving = 0; halving <= 6; ++halving, t *= 0.5) {
-      ++report.evaluations;
-      if (f(theta + t * step, trial_lml, nullptr) && trial_lml > lml + 1e-4 * t * predicted) {
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;
-    const LogHyperparameters next = theta + t * step;  // inside the box: both ends are
-    Eigen::Vector3d g_next;
-    ++report.evaluations;
-    double next_lml = 0;
-    if (!f(next, next_lml, &g_next)) break;  // the factor from the accepted trial is reused
-    const Eigen::Vector3d s_vec = next - theta, y = -(g_next - g);  // of -LML
-    if (s_vec.dot(y) > 1e-12 * s_vec.norm() * y.norm()) {
-      const Eigen::Vector3d bs = b * s_vec;
-      b += y * y.transpose() / y.dot(s_vec) - bs * bs.transpose() / s_vec.dot(bs);
-    }
-    theta = next;
-    lml = next_lml;
-    g = g_next;
-    ++report.iterations;
-  }
-  report.lml = lml;
-  report.result = from_log(theta);
-  if (!(lml >= start_lml)) {  // cannot happen with exact arithmetic; keep the contract regardless
-    report.lml = start_lml;
-    report.result = start;
-  }
-  report.solver_report = "quasi-Newton polish from the subset Hessian";
-  result.hyperparameters = report.result;
-  result.lml = report.lml;
-  result.iterations = report.iterations;
-  result.evaluations = report.evaluations;
-  result.starts.push_back(std::move(report));
-  return result;
+  if (!(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(b).eigenvalues().minCoeff() > 0)) return {};
+  return b;
 }
+
+// Subsets keep 16 runs of consecutive points (parts of touches).
+constexpr Eigen::Index kSubsetRuns = 16;
+
+// A coarse level only seeds the next, whose optimum lies ~0.1 away in log
+// space: it stops once a step would gain less than this (relative).
+constexpr double kCoarseStopGain = 1e-5;
 
 }  // namespace
 
@@ -297,118 +206,134 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
   }
   const DataScales scales = data_scales(xy_mm, z_mm);
   const HyperparameterBounds bounds = bounds_from_scales(scales, options.bounds);
-  std::vector<Hyperparameters> starts = start_points(options, scales, bounds);
+  const std::vector<Hyperparameters> starts = start_points(options, scales, bounds);
+  const ProfileBox box(bounds);
+  const LbfgsSettings lbfgs = lbfgs_settings(options);
 
-  MarginalLikelihood likelihood(options.kernel, xy_mm, z_mm, options.jitter);
-  std::string last_failure;
-  const LmlFunction f = exact_lml(likelihood, last_failure);
-  auto rethrow = [&](const RunError& error) {
-    throw RunError(std::string(error.what()) + (last_failure.empty() ? "" : ": " + last_failure));
+  Profile full(options.kernel, xy_mm, z_mm, bounds, options.jitter);
+  const BoxObjective f = full.objective();
+  const auto at_full = [&full](const Eigen::VectorXd& x) { return full.at(x); };
+  auto fail = [&](const std::string& what) {
+    throw RunError("GP hyperparameter search: " + what + (full.last_failure.empty() ? "" : ": " + full.last_failure));
   };
+
+  SearchResult result;
+  result.bounds = bounds;
+  QuasiNewtonSettings polish;
+  polish.max_iterations = options.max_iterations;
+  polish.stop_gain = options.stop_gain;
+  polish.final_gain = std::max(polish.final_gain, 100.0 * options.stop_gain);
+  auto finish = [&](const BoxRun& run) {
+    add_run(result, report_of(run, at_full));
+    if (run.hessian.size() > 0) result.hessian_per_point = run.hessian / static_cast<double>(n);
+    if (!(result.lml > kNoLml)) fail("the likelihood could not be evaluated on all " + std::to_string(n) + " points");
+    return result;
+  };
+
+  // A warm start with its curvature: straight to quasi-Newton steps on all
+  // the points.
+  const Eigen::Matrix2d& curvature = options.start_hessian_per_point;
+  if (starts.size() == 1 && curvature.allFinite() && curvature(0, 0) > 0 && curvature.determinant() > 0) {
+    BoxRun run = quasi_newton_in_box(f, box.lo, box.hi, box.of(starts.front()), curvature * static_cast<double>(n),
+                                     polish);
+    if (run.best_value > kNoLml) {
+      const double initial = run.start_value;
+      // A stale curvature that leads nowhere: L-BFGS takes over from the best point.
+      if (!run.converged) run = lbfgs_in_box(f, box.lo, box.hi, run.best, lbfgs);
+      result.initial_lml = initial;
+      return finish(run);
+    }
+  }
 
   const bool screen = options.screening_points > 0 && n > options.screening_points;
   if (!screen) {
-    try {
-      return maximise_lml(f, bounds, starts, options);
-    } catch (const RunError& error) {
-      rethrow(error);
-    }
-  }
-
-  // Restarts on every (n / m)-th point, then one full-data run from the best
-  // of the starts and the subset optima, judged by the full-data LML.
-  const Eigen::Index m = options.screening_points;
-  auto strided = [&](Eigen::Index size) {
-    std::pair<Eigen::MatrixX2d, Eigen::VectorXd> sub{Eigen::MatrixX2d(size, 2), Eigen::VectorXd(size)};
-    for (Eigen::Index i = 0; i < size; ++i) {
-      const Eigen::Index k = i * n / size;
-      sub.first.row(i) = xy_mm.row(k);
-      sub.second[i] = z_mm[k];
-    }
-    return sub;
-  };
-  std::vector<StartReport> screening;
-  try {
-    const auto [sub_xy, sub_z] = strided(m);
-    MarginalLikelihood sub_likelihood(options.kernel, sub_xy, sub_z, options.jitter);
-    std::string sub_failure;
-    screening = maximise_lml(exact_lml(sub_likelihood, sub_failure), bounds, starts, options).starts;
-  } catch (const RunError&) {
-    // The subset could not be evaluated anywhere: fall through to the starts.
-  }
-
-  // Coarse to fine: the best subset optimum is refined on subsets twice as
-  // large while they hold at most half the data. Where the surface has
-  // detail the optimum moves with point density (a sparse subset reads fine
-  // relief as noise), and the full-data run, at 8x the cost of a half-size
-  // one, then starts close to its own optimum.
-  std::vector<Hyperparameters> refined;
-  Eigen::Index refined_level = m;  // subset size the best subset point was optimised on
-  const auto best_subset = std::max_element(screening.begin(), screening.end(),
-                                            [](const StartReport& a, const StartReport& b) { return a.lml < b.lml; });
-  if (best_subset != screening.end() && best_subset->lml > kNoLml) {
-    Hyperparameters h = best_subset->result;
-    for (Eigen::Index level = 2 * m; 2 * level <= n; level *= 2) {
-      try {
-        const auto [level_xy, level_z] = strided(level);
-        MarginalLikelihood level_likelihood(options.kernel, level_xy, level_z, options.jitter);
-        std::string level_failure;
-        h = maximise_lml(exact_lml(level_likelihood, level_failure), bounds, {h}, options).hyperparameters;
-        refined = {h};
-        refined_level = level;
-      } catch (const RunError&) {
-        break;  // keep the last level that could be evaluated
+    Eigen::VectorXd best;
+    double best_value = kNoLml;
+    for (const Hyperparameters& start : starts) {
+      const BoxRun run = lbfgs_in_box(f, box.lo, box.hi, box.of(start), lbfgs);
+      add_run(result, report_of(run, at_full));
+      if (run.best_value > best_value) {
+        best_value = run.best_value;
+        best = run.best;
       }
     }
+    result.initial_lml = result.starts.front().start_lml;
+    if (!(result.lml > kNoLml))
+      fail("the likelihood could not be evaluated at any point from " + std::to_string(starts.size()) + " starts");
+    // The curvature for a later warm start (two gradients at most
+    // `screening_points` points: cheap next to a search).
+    const Eigen::MatrixXd curvature_here = negative_hessian(f, best);
+    if (curvature_here.size() > 0) result.hessian_per_point = curvature_here / static_cast<double>(n);
+    return result;
   }
 
-  // Full-data values at the first start (the reference a search must not
-  // fall below) and at the refined optimum, or else at each distinct subset
-  // optimum; each evaluation costs a factorisation.
-  std::vector<Hyperparameters> candidates{screening.empty() ? starts.front() : screening.front().start};
-  if (!refined.empty()) {
-    candidates.push_back(refined.front());
-  } else {
-    for (const StartReport& s : screening)
-      if (s.lml > kNoLml && std::none_of(candidates.begin() + 1, candidates.end(), [&](const Hyperparameters& c) {
-            return ((to_log(c) - to_log(s.result)).cwiseAbs().array() < 1e-6).all();  // the same optimum
-          }))
-        candidates.push_back(s.result);
-  }
-  if (candidates.size() == 1)
-    for (std::size_t i = 1; i < starts.size(); ++i) candidates.push_back(starts[i]);
-  double initial_lml = kNoLml, best_lml = kNoLml;
-  Hyperparameters best = starts.front();
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    double value = kNoLml;
-    if (!f(to_log(candidates[i]), value, nullptr)) value = kNoLml;
-    if (i == 0) initial_lml = value;
-    if (value > best_lml) {
-      best_lml = value;
-      best = candidates[i];
-    }
-  }
-  SearchResult result;
-  const bool from_subset_optimum = !screening.empty() && !(best == candidates.front());
-  if (from_subset_optimum) {
-    const auto [level_xy, level_z] = strided(std::min(refined_level, n));
-    MarginalLikelihood level_likelihood(options.kernel, level_xy, level_z, options.jitter);
-    std::string level_failure;
-    result = newton_polish(f, exact_lml(level_likelihood, level_failure),
-                           static_cast<double>(n) / static_cast<double>(level_xy.rows()), best, best_lml, bounds,
-                           options);
-  }
-  if (result.starts.empty()) {  // no subset optimum to polish, or its Hessian was unusable
-    try {
-      result = maximise_lml(f, bounds, {best}, options);
-    } catch (const RunError& error) {
-      rethrow(error);
-    }
-  }
-  result.initial_lml = initial_lml;
+  // Restarts on a subset; the best climbs to larger subsets.
+  const Eigen::Index m = options.screening_points;
   result.screening_points = m;
-  result.screening = std::move(screening);
-  return result;
+  Eigen::VectorXd x;         // the best point so far
+  Eigen::MatrixXd hessian;   // -Hessian there, on `level` points (empty: none usable)
+  Eigen::Index level = m;
+  {
+    const auto [sub_xy, sub_z] = subset_of_runs(xy_mm, z_mm, m, kSubsetRuns);
+    Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter);
+    const BoxObjective fs = sub.objective();
+    double best = kNoLml;
+    for (const Hyperparameters& start : starts) {
+      const BoxRun run = lbfgs_in_box(fs, box.lo, box.hi, box.of(start), lbfgs);
+      result.screening.push_back(report_of(run, [&sub](const Eigen::VectorXd& p) { return sub.at(p); }));
+      if (run.best_value > best) {
+        best = run.best_value;
+        x = run.best;
+      }
+    }
+    if (best > kNoLml) hessian = negative_hessian(fs, x);
+  }
+  for (Eigen::Index next = 2 * m; x.size() > 0 && 2 * next <= n; next *= 2) {
+    const auto [sub_xy, sub_z] = subset_of_runs(xy_mm, z_mm, next, kSubsetRuns);
+    Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter);
+    const BoxObjective fs = sub.objective();
+    BoxRun run;
+    if (hessian.size() > 0) {
+      QuasiNewtonSettings coarse;
+      coarse.max_iterations = options.max_iterations;
+      coarse.stop_gain = coarse.final_gain = kCoarseStopGain;
+      const double scale = static_cast<double>(next) / static_cast<double>(level);
+      run = quasi_newton_in_box(fs, box.lo, box.hi, x, hessian * scale, coarse);
+    }
+    if (!(run.best_value > kNoLml)) {
+      LbfgsSettings loose = lbfgs;
+      loose.function_tolerance = kCoarseStopGain;
+      run = lbfgs_in_box(fs, box.lo, box.hi, x, loose);
+    }
+    if (!(run.best_value > kNoLml)) break;  // keep the last level that could be evaluated
+    result.refinement.push_back(report_of(run, [&sub](const Eigen::VectorXd& p) { return sub.at(p); }));
+    x = run.best;
+    hessian = run.hessian;  // empty after L-BFGS
+    level = next;
+  }
+
+  // All the data: the LML at the first start (the reference a search must
+  // not fall below) and at the climb's best point; the last climb starts from
+  // the better one (the subset's optimum is judged on all the points: with
+  // touches of fine relief it can lie farther than the first start). The
+  // factorisation of the point evaluated last is reused for its gradient.
+  const Eigen::VectorXd first = box.of(starts.front());
+  double initial = kNoLml, at_x = kNoLml;
+  if (!f(first, initial, nullptr)) initial = kNoLml;
+  result.initial_lml = initial;
+  if (x.size() > 0 && !f(x, at_x, nullptr)) at_x = kNoLml;
+  const Eigen::VectorXd& from = at_x >= initial && at_x > kNoLml ? x : first;
+  BoxRun run;
+  if (hessian.size() > 0) {
+    const double scale = static_cast<double>(n) / static_cast<double>(level);
+    run = quasi_newton_in_box(f, box.lo, box.hi, from, hessian * scale, polish);
+  }
+  if (!(run.best_value > kNoLml)) {
+    run = lbfgs_in_box(f, box.lo, box.hi, from, lbfgs);
+  } else if (!run.converged) {
+    run = lbfgs_in_box(f, box.lo, box.hi, run.best, lbfgs);
+  }
+  return finish(run);
 }
 
 }  // namespace touchcloud::gp

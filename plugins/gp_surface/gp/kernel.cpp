@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "gp/vector_exp.hpp"
+
 namespace touchcloud::gp {
 
 namespace {
@@ -30,38 +32,53 @@ double Kernel::d_covariance_d_log_lengthscale(double r2_mm2) const {
   return h_.signal_variance_mm2 * (s * s / 3.0) * (1.0 + s) * std::exp(-s);
 }
 
+// The exponentials go through exp_in_place (vector_exp.hpp): most of the
+// cost of building a kernel matrix.
 void Kernel::covariance_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
   const double s2 = h_.signal_variance_mm2;
   if (kind_ == KernelKind::rbf) {
-    v = s2 * (v * (-0.5 * inv_lengthscale2_)).exp();
+    v *= -0.5 * inv_lengthscale2_;
+    exp_in_place(v);
+    v *= s2;
   } else {
-    v = (v * (5.0 * inv_lengthscale2_)).sqrt();
-    v = s2 * (1.0 + v + v.square() * (1.0 / 3.0)) * (-v).exp();
+    v = (v * (5.0 * inv_lengthscale2_)).sqrt();  // s
+    Eigen::ArrayXd e = -v;
+    exp_in_place(e);
+    v = s2 * (1.0 + v + v.square() * (1.0 / 3.0)) * e;
   }
 }
 
 void Kernel::d_log_lengthscale_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
   const double s2 = h_.signal_variance_mm2;
+  Eigen::ArrayXd e(v.size());
   if (kind_ == KernelKind::rbf) {
-    v *= inv_lengthscale2_;
-    v = s2 * v * (-0.5 * v).exp();
+    v *= inv_lengthscale2_;  // t
+    e = -0.5 * v;
+    exp_in_place(e);
+    v = s2 * v * e;
   } else {
-    v = (v * (5.0 * inv_lengthscale2_)).sqrt();
-    v = s2 * (v.square() * (1.0 / 3.0)) * (1.0 + v) * (-v).exp();
+    v = (v * (5.0 * inv_lengthscale2_)).sqrt();  // s
+    e = -v;
+    exp_in_place(e);
+    v = s2 * (v.square() * (1.0 / 3.0)) * (1.0 + v) * e;
   }
 }
 
 void Kernel::covariance_and_d_log_lengthscale(Eigen::Map<Eigen::ArrayXd> v, Eigen::Map<Eigen::ArrayXd> dk) const {
   const double s2 = h_.signal_variance_mm2;
   if (kind_ == KernelKind::rbf) {
-    dk = v * inv_lengthscale2_;          // t
-    v = s2 * (-0.5 * dk).exp();          // k
-    dk *= v;                             // t k
+    dk = v * inv_lengthscale2_;  // t
+    v = -0.5 * dk;
+    exp_in_place(v);
+    v *= s2;   // k
+    dk *= v;   // t k
   } else {
     dk = (v * (5.0 * inv_lengthscale2_)).sqrt();  // s
+    v = -dk;
+    exp_in_place(v);
     const auto poly = 1.0 + dk + dk.square() * (1.0 / 3.0);
-    v = s2 * poly * (-dk).exp();                                    // k
-    dk = v * (dk.square() * (1.0 / 3.0)) * (1.0 + dk) / poly;       // (s^2/3)(1 + s) s2 e^-s
+    v = s2 * poly * v;                                         // k
+    dk = v * (dk.square() * (1.0 / 3.0)) * (1.0 + dk) / poly;  // (s^2/3)(1 + s) s2 e^-s
   }
 }
 

@@ -198,7 +198,9 @@ TEST(GpSnapshots, CachedCandidateVarianceEqualsAFreshSolve) {
     snapshots.push_back(gp);
     gp = next;
     EXPECT_LT((gp.variance(candidates) - fresh_variance(gp, candidates)).cwiseAbs().maxCoeff(), 1e-12) << n;
-    if (n == 400) EXPECT_LT((gp.variance(other) - fresh_variance(gp, other)).cwiseAbs().maxCoeff(), 1e-12);
+    if (n == 400) {
+      EXPECT_LT((gp.variance(other) - fresh_variance(gp, other)).cwiseAbs().maxCoeff(), 1e-12);
+    }
   }
   for (const ExactGp& old : snapshots)
     EXPECT_LT((old.variance(candidates) - fresh_variance(old, candidates)).cwiseAbs().maxCoeff(), 1e-12) << old.size();

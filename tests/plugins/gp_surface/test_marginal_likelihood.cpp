@@ -100,6 +100,63 @@ TEST(GpMarginalLikelihood, ZeroNoiseHasZeroNoiseGradient) {
   EXPECT_EQ(lml.evaluate({1.0, 5.0, 0.0}, true).gradient[2], 0.0);
 }
 
+// The profile over s2: its value is the LML at the s2 it reports, and no
+// other s2 (at the same noise ratio) does better.
+TEST(GpMarginalLikelihood, ProfileIsTheBestSignalVariance) {
+  const Eigen::MatrixX2d xy = random_xy(90, 26);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  const HyperparameterBounds wide{{1e-6, 0.1, 1e-9}, {1e6, 1e4, 1e3}};
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    MarginalLikelihood lml(kind, xy, z);
+    for (const auto& [l, g] : {std::pair{9.0, 1e-3}, std::pair{3.0, 0.1}}) {
+      const ProfiledEvaluation p = lml.evaluate_profiled(l, g, wide, false);
+      const Hyperparameters& h = p.hyperparameters;
+      EXPECT_EQ(h.lengthscale_mm, l);
+      EXPECT_NEAR(h.noise_variance_mm2 / h.signal_variance_mm2, g, 1e-14 * g);
+      EXPECT_NEAR(lml.evaluate(h, false).lml, p.lml, 1e-10 * std::abs(p.lml)) << to_string(kind);
+      for (double f : {0.97, 1.03}) {
+        const Hyperparameters other{f * h.signal_variance_mm2, l, f * h.noise_variance_mm2};
+        EXPECT_LT(lml.evaluate(other, false).lml, p.lml) << to_string(kind) << " s2 x " << f;
+      }
+    }
+  }
+}
+
+// Case 11 for the profile: d/dlog(l, g) against central differences, with s2
+// free, held at its upper bound, and s2 set by the upper noise bound.
+TEST(GpMarginalLikelihood, ProfiledGradientMatchesFiniteDifferences) {
+  const Eigen::MatrixX2d xy = random_xy(120, 27);
+  const Eigen::VectorXd z = heights(xy, 0.1);
+  const HyperparameterBounds wide{{1e-6, 0.1, 1e-9}, {1e6, 1e4, 1e3}};
+  const HyperparameterBounds low_s2{{1e-6, 0.1, 1e-9}, {0.5, 1e4, 1e3}};  // the free s2 is ~4-10 mm^2
+  const HyperparameterBounds low_noise{{1e-6, 0.1, 1e-9}, {1e6, 1e4, 1e-3}};
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    MarginalLikelihood lml(kind, xy, z);
+    for (const HyperparameterBounds* b : {&wide, &low_s2, &low_noise}) {
+      const double l = 8.0, g = 2e-3;
+      const ProfiledEvaluation at = lml.evaluate_profiled(l, g, *b, true);
+      ASSERT_EQ(at.factorisation.attempts, 1);
+      if (b == &low_s2) {
+        EXPECT_EQ(at.hyperparameters.signal_variance_mm2, 0.5);
+      }
+      if (b == &low_noise) {
+        EXPECT_NEAR(at.hyperparameters.noise_variance_mm2, 1e-3, 1e-15);
+      }
+      const double step = 1e-4;
+      for (int i = 0; i < 2; ++i) {
+        const double up = std::exp(step * (i == 0)), down = std::exp(-step * (i == 0));
+        const double gu = std::exp(step * (i == 1)), gd = std::exp(-step * (i == 1));
+        const double fd = (lml.evaluate_profiled(l * up, g * gu, *b, false).lml -
+                           lml.evaluate_profiled(l * down, g * gd, *b, false).lml) /
+                          (2 * step);
+        EXPECT_NEAR(at.gradient[i], fd, 1e-6 * std::max(1.0, std::abs(fd)))
+            << to_string(kind) << " parameter " << i
+            << (b == &wide ? " free" : b == &low_s2 ? " s2 bound" : " noise bound");
+      }
+    }
+  }
+}
+
 TEST(GpMarginalLikelihood, BadInputIsAnInputError) {
   Eigen::MatrixX2d xy = random_xy(5, 25);
   Eigen::VectorXd z = heights(xy);

@@ -62,8 +62,10 @@ TEST(GpSparseSurface, InducingPointsAtTheDataReproduceTheExactModel) {
   const SparseSurfaceModel sparse_model(sparse);
   const Eigen::MatrixX2d q = grid_xy(9, 9, 0.0, 60.0);
   EXPECT_EQ(sparse_model.training_size(), 300u);
-  EXPECT_LT((sparse_model.mean(q) - exact_model.mean(q)).cwiseAbs().maxCoeff(), 1e-8);
-  EXPECT_LT((sparse_model.variance(q) - exact_model.variance(q)).cwiseAbs().maxCoeff(), 1e-8);
+  // The VFE solves go through K_mm, whose conditioning amplifies the kernel's
+  // last-bit rounding (which differs between exp implementations) to ~1e-8.
+  EXPECT_LT((sparse_model.mean(q) - exact_model.mean(q)).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_LT((sparse_model.variance(q) - exact_model.variance(q)).cwiseAbs().maxCoeff(), 1e-7);
   EXPECT_EQ(sparse_model.hyperparameters().at("inducing_points"), 300.0);
   EXPECT_EQ(sparse_model.hyperparameters().at("lengthscale_mm"), 7.0);
 }

@@ -1,0 +1,54 @@
+#include "gp/vector_exp.hpp"
+
+#include <cmath>
+
+#if defined(TOUCHCLOUD_GP_SLEEF) && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define TOUCHCLOUD_GP_EXP_AVX2 1
+#include <immintrin.h>
+#include <sleef.h>
+// sleef.h declares its AVX2 functions only where __AVX__ is defined, i.e. in
+// a build for AVX CPUs alone; this build stays portable and takes the AVX2
+// path after a CPU check, so the one function it uses is declared here, as
+// libsleef exports it.
+extern "C" __m256d Sleef_expd4_u10avx2(__m256d);
+#endif
+
+namespace touchcloud::gp {
+
+namespace {
+
+#ifdef TOUCHCLOUD_GP_EXP_AVX2
+// SLEEF's four-wide exp (1.0 ulp); the build stays portable, so the AVX2
+// path is compiled for this function only and taken after a CPU check.
+__attribute__((target("avx2,fma"))) void exp_avx2(double* v, Eigen::Index n) {
+  Eigen::Index i = 0;
+  for (; i + 4 <= n; i += 4) _mm256_storeu_pd(v + i, Sleef_expd4_u10avx2(_mm256_loadu_pd(v + i)));
+  for (; i < n; ++i) v[i] = std::exp(v[i]);
+}
+
+bool cpu_has_avx2_fma() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return has;
+}
+#endif
+
+}  // namespace
+
+void exp_in_place(Eigen::Ref<Eigen::ArrayXd> v) {
+#ifdef TOUCHCLOUD_GP_EXP_AVX2
+  if (cpu_has_avx2_fma() && v.innerStride() == 1) {
+    exp_avx2(v.data(), v.size());
+    return;
+  }
+#endif
+  v = v.exp();
+}
+
+const char* vector_exp_path() {
+#ifdef TOUCHCLOUD_GP_EXP_AVX2
+  if (cpu_has_avx2_fma()) return "avx2+fma (SLEEF)";
+#endif
+  return "sse2 (Eigen)";
+}
+
+}  // namespace touchcloud::gp

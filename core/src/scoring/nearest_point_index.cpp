@@ -34,6 +34,7 @@
 #include <string>
 #include <thread>
 
+#include <Eigen/Geometry>
 #include <nanoflann.hpp>
 
 #include "parallel_ranges.hpp"
@@ -68,14 +69,9 @@ constexpr double kSlack = 1e-12;
 
 struct Cluster {
   std::uint32_t first = 0, count = 0;  // its points in Impl::points
-  Eigen::Vector3d lo, hi;              // its bounding box, mm
+  Eigen::AlignedBox3d box;             // mm; no point of the cluster lies outside it
   Eigen::Vector3d centre;              // of the box
   double radius = 0;                   // mm, from the centre to its farthest point
-
-  // The squared distance from q to the box: no point of the cluster is closer.
-  double squared_gap(const Eigen::Vector3d& q) const {
-    return (lo - q).cwiseMax(q - hi).cwiseMax(0.0).squaredNorm();
-  }
 };
 
 // nanoflann's view of the cluster centres.
@@ -101,12 +97,17 @@ std::uint32_t spread_bits(std::uint32_t x) {
   return out;
 }
 
+// The bounding box of points [first, last), which is not empty.
+Eigen::AlignedBox3d bounding_box(const Eigen::Vector3d* first, const Eigen::Vector3d* last) {
+  Eigen::AlignedBox3d box(*first);
+  for (const Eigen::Vector3d* p = first; p != last; ++p) box.extend(*p);
+  return box;
+}
+
 // The widest axis of points [first, last).
 int widest_axis(const Eigen::Vector3d* first, const Eigen::Vector3d* last) {
-  Eigen::Vector3d lo = *first, hi = *first;
-  for (const Eigen::Vector3d* p = first; p != last; ++p) lo = lo.cwiseMin(*p), hi = hi.cwiseMax(*p);
   int axis = 0;
-  (hi - lo).maxCoeff(&axis);
+  bounding_box(first, last).sizes().maxCoeff(&axis);
   return axis;
 }
 
@@ -128,13 +129,10 @@ void cut_into_clusters(Eigen::Vector3d* first, Eigen::Vector3d* last, std::size_
   const auto count = static_cast<std::size_t>(last - first);
   Cluster c;
   if (count <= kClusterSize) {
-    Eigen::Vector3d lo = *first, hi = *first;
-    for (const Eigen::Vector3d* p = first; p != last; ++p) lo = lo.cwiseMin(*p), hi = hi.cwiseMax(*p);
     c.first = static_cast<std::uint32_t>(base);
     c.count = static_cast<std::uint32_t>(count);
-    c.lo = lo;
-    c.hi = hi;
-    c.centre = 0.5 * (lo + hi);
+    c.box = bounding_box(first, last);
+    c.centre = c.box.center();
     for (const Eigen::Vector3d* p = first; p != last; ++p) c.radius = std::max(c.radius, (*p - c.centre).norm());
     if (c.radius <= max_radius || count == 1) {
       out.push_back(c);
@@ -149,8 +147,8 @@ void cut_into_clusters(Eigen::Vector3d* first, Eigen::Vector3d* last, std::size_
 // A counting sort by the Z-order index of a grid over the bounding box.
 void sort_range_by_locality(Eigen::Vector3d* first, std::size_t count) {
   if (count < 2) return;
-  Eigen::Vector3d lo = first[0], hi = first[0];
-  for (std::size_t i = 0; i < count; ++i) lo = lo.cwiseMin(first[i]), hi = hi.cwiseMax(first[i]);
+  const Eigen::AlignedBox3d box = bounding_box(first, first + count);
+  const Eigen::Vector3d lo = box.min(), hi = box.max();
   constexpr std::uint32_t cells = 1u << kLocalityBits;
   const Eigen::Vector3d extent = (hi - lo).cwiseMax(std::numeric_limits<double>::min());
   std::vector<std::uint32_t> code(count), start((std::size_t{1} << (3 * kLocalityBits)) + 1, 0);
@@ -201,7 +199,7 @@ struct NearestPointIndex::Impl {
     bool full() const { return true; }
     bool addPoint(double, std::uint32_t c) {
       const Cluster& k = index.clusters[c];
-      if (k.squared_gap(q) > best_squared * (1 + kSlack)) return true;
+      if (k.box.squaredExteriorDistance(q) > best_squared * (1 + kSlack)) return true;
       const double before = best_squared;
       const Eigen::Vector3d* p = index.points.data() + k.first;
       for (std::uint32_t j = 0; j < k.count; ++j) {

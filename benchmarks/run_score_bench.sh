@@ -60,7 +60,7 @@ for r in range(1, rounds + 1):
                 peer[case] = (v["min_ms"], variant)
 print(f"scoring {points[1]} estimated points against {points[0]} ground-truth points, {cores} cores; "
       f"best of {rounds} alternating rounds, build + query")
-print(f"ours: touchcloud NearestPointIndex (nanoflann KD-trees), {points[2]} threads")
+print(f"ours: touchcloud NearestPointIndex (box tree over point clusters), {points[2]} threads")
 if "skipped" in peer:
     print("peer skipped: " + peer["skipped"])
     for name, ms in ours.items():

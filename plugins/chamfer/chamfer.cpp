@@ -77,14 +77,19 @@ class Chamfer final : public Stage {
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud || cloud->empty()) throw RunError("the estimated cloud is empty; there is nothing to score");
-    const scoring::Points estimate = scoring::to_points(*cloud);
-    scoring::CloudScore result;
-    try {
-      result = scoring::score_estimate(estimate, gt_->points, options_);
-    } catch (const InputError& e) {
-      throw RunError(std::string("the estimated cloud cannot be scored: ") + e.what());
+    scoring::Points estimate = scoring::to_points(*cloud);
+    // In a loop the surface often comes back unchanged (a touch that added
+    // no point); its score is then the last one.
+    if (estimate != last_estimate_) {
+      try {
+        last_result_ = scoring::score_estimate(estimate, gt_->points, options_);
+      } catch (const InputError& e) {
+        last_estimate_.clear();
+        throw RunError(std::string("the estimated cloud cannot be scored: ") + e.what());
+      }
+      last_estimate_ = std::move(estimate);
     }
-    Score score = result.to_score();
+    Score score = last_result_.to_score();
     for (const auto& m : score.metrics)
       if (m.name != "fscore_threshold") ctx.metric(m.name, m.value, m.unit);  // a parameter, not a result
     if (const Metric* eq11 = score.find("chamfer_est_to_gt")) history_.push_back(eq11->value);
@@ -100,6 +105,8 @@ class Chamfer final : public Stage {
   }
 
   std::vector<double> history_;
+  scoring::Points last_estimate_;
+  scoring::CloudScore last_result_;
 };
 
 }  // namespace touchcloud

@@ -1,32 +1,37 @@
-// Exact nearest-neighbour search in double precision: a nanoflann KD-tree
-// over small clusters of the indexed points, each with a bounding sphere.
+// Exact nearest-neighbour search in double precision: a 4-wide tree of
+// bounding boxes over small clusters of the indexed points.
 //
-// Why nanoflann: it searches double coordinates exactly, so distances match a
-// brute-force scan to the last bits (PCL's KdTreeFLANN stores float, which
-// alone costs ~1e-7 relative), and its result sets can be our own.
+// Why boxes, not a KD-tree: a KD-tree prunes a subtree only by the gap to the
+// split planes on the way to it. Points sampled from a surface are seldom
+// split across the surface's normal (a flat region never is), so a query
+// 10 mm above it visited every leaf within 10 mm sideways: ~30,000 points on
+// the fox mask, and early reconstructions are mostly that far off. Here every
+// node holds the tight bounding boxes of its four children, which are thin
+// across the surface and prune far better. The clusters (at most
+// kClusterSize points, cut by median splits on the widest axis) are the
+// leaves; a node's four children are the four quarters of its range of
+// clusters, which the depth-first order of the splits keeps compact in space.
+// The version before, a nanoflann KD-tree over the clusters' centres, spent
+// most of a query walking the tree: on the fox mask's per-touch surfaces it
+// took 1.9x as long on the first and 1.5x on the last (docs/scoring.md).
 //
-// Why clusters: a KD-tree prunes a subtree only by the gap to the split
-// planes on the way to it. Points sampled from a surface are seldom split
-// across the surface's normal (a flat region never is), so a query 10 mm
-// above it visited every leaf within 10 mm sideways: ~30,000 points on the
-// fox mask, ~16 us a query, and early reconstructions are mostly that far
-// off. Here the tree holds the centres of clusters of at most kClusterSize
-// points (median splits on the widest axis, so they are compact); it finds
-// every cluster whose bounding sphere may hold a closer point, and a
-// cluster's points are read only when its bounding box does. The tree visits
-// ~kClusterSize times fewer entries, and the boxes, thin across the surface,
-// prune far better than the split planes.
+// Boxes are kept in float, rounded outward, so a node's four fit in two cache
+// lines and still hold every point; distances are computed in double. The
+// pruning is therefore conservative and the result exact: the distances
+// match a brute-force scan to the last bit (tests/core/scoring).
 //
 // Two more things make it faster without changing any result:
 // - Warm starts: queries usually come in order along a surface (a grid, a
 //   scan, or the locality order of cloud_metrics.cpp), so the previous
 //   query's nearest point is close to the next one's, and its distance
-//   bounds the search from the first node on.
+//   bounds the search from the root on. (Starting each query of a per-touch
+//   surface from its nearest point on the previous touch's was no faster.)
 // - Threads take chunks of queries as they finish the last one: the cost of
 //   a query varies by orders of magnitude across a surface.
 #include "touchcloud/scoring/nearest_point_index.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -35,7 +40,6 @@
 #include <thread>
 
 #include <Eigen/Geometry>
-#include <nanoflann.hpp>
 
 #include "parallel_ranges.hpp"
 #include "touchcloud/error.hpp"
@@ -44,16 +48,9 @@ namespace touchcloud::scoring {
 
 namespace {
 
-#if NANOFLANN_VERSION >= 0x150
-using SearchParameters = nanoflann::SearchParameters;
-#else
-using SearchParameters = nanoflann::SearchParams;
-#endif
-
 // 16 to 64 points per cluster searched the fox mask's 34 per-touch surfaces
 // (1.7M ground-truth points) within the noise of each other.
 constexpr std::size_t kClusterSize = 32;
-constexpr std::size_t kCentresPerLeaf = 8;
 // Z-order cells per axis for sort_by_locality: 2^6 = 64 was the fastest of
 // 16..128.
 constexpr int kLocalityBits = 6;
@@ -62,31 +59,34 @@ constexpr std::size_t kQueryChunk = 512;
 // Above this many points, the first splits are cut on one thread and the
 // clusters below them built on all.
 constexpr std::size_t kParallelBuildPoints = 65536;
-// Pruning compares distances computed by different formulas (centres by
-// nanoflann, points by Eigen); this much slack keeps rounding from pruning a
-// cluster that holds the nearest point.
+// Pruning compares a box's distance with a point's, computed in different
+// orders; this much slack keeps rounding from pruning the nearest point.
 constexpr double kSlack = 1e-12;
+
+// A child reference: a node's index, or a cluster's with kLeaf set.
+constexpr std::uint32_t kLeaf = 0x80000000u;
+constexpr std::uint32_t kNoChild = 0xffffffffu;
 
 struct Cluster {
   std::uint32_t first = 0, count = 0;  // its points in Impl::points
   Eigen::AlignedBox3d box;             // mm; no point of the cluster lies outside it
-  Eigen::Vector3d centre;              // of the box
-  double radius = 0;                   // mm, from the centre to its farthest point
 };
 
-// nanoflann's view of the cluster centres.
-struct Centres {
-  const std::vector<Cluster>* clusters = nullptr;
-  std::size_t kdtree_get_point_count() const { return clusters->size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const {
-    return (*clusters)[i].centre[static_cast<Eigen::Index>(dim)];
-  }
-  template <class BoundingBox>
-  bool kdtree_get_bbox(BoundingBox&) const { return false; }
+// Four children's boxes side by side, axis by axis, so one pass measures all
+// four; float rounded outward (still holding every point), two cache lines.
+struct alignas(64) Node {
+  std::array<std::array<float, 4>, 3> lo, hi;  // [axis][child], mm
+  std::array<std::uint32_t, 4> child{kNoChild, kNoChild, kNoChild, kNoChild};
 };
 
-using CentreTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Centres, double>, Centres, 3, std::uint32_t>;
+float round_down(double v) {
+  const auto f = static_cast<float>(v);
+  return static_cast<double>(f) <= v ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+float round_up(double v) {
+  const auto f = static_cast<float>(v);
+  return static_cast<double>(f) >= v ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
 
 bool finite(const Eigen::Vector3d& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
@@ -121,27 +121,16 @@ Eigen::Vector3d* split_at_median(Eigen::Vector3d* first, Eigen::Vector3d* last) 
 }
 
 // Appends the clusters of points [first, last), `base` the index of `first`
-// in the indexed points, in the order of a depth-first walk of the splits: at
-// most kClusterSize points each, and no wider than `max_radius` unless a
-// single point.
-void cut_into_clusters(Eigen::Vector3d* first, Eigen::Vector3d* last, std::size_t base, double max_radius,
-                       std::vector<Cluster>& out) {
+// in the indexed points, in the order of a depth-first walk of the splits.
+void cut_into_clusters(Eigen::Vector3d* first, Eigen::Vector3d* last, std::size_t base, std::vector<Cluster>& out) {
   const auto count = static_cast<std::size_t>(last - first);
-  Cluster c;
   if (count <= kClusterSize) {
-    c.first = static_cast<std::uint32_t>(base);
-    c.count = static_cast<std::uint32_t>(count);
-    c.box = bounding_box(first, last);
-    c.centre = c.box.center();
-    for (const Eigen::Vector3d* p = first; p != last; ++p) c.radius = std::max(c.radius, (*p - c.centre).norm());
-    if (c.radius <= max_radius || count == 1) {
-      out.push_back(c);
-      return;
-    }
+    out.push_back({static_cast<std::uint32_t>(base), static_cast<std::uint32_t>(count), bounding_box(first, last)});
+    return;
   }
   Eigen::Vector3d* middle = split_at_median(first, last);
-  cut_into_clusters(first, middle, base, max_radius, out);
-  cut_into_clusters(middle, last, base + static_cast<std::size_t>(middle - first), max_radius, out);
+  cut_into_clusters(first, middle, base, out);
+  cut_into_clusters(middle, last, base + static_cast<std::size_t>(middle - first), out);
 }
 
 // A counting sort by the Z-order index of a grid over the bounding box.
@@ -174,55 +163,94 @@ void sort_by_locality(Points& points) { sort_range_by_locality(points.data(), po
 struct NearestPointIndex::Impl {
   Points points;  // grouped by cluster
   std::vector<Cluster> clusters;
-  double max_radius = 0;
-  Centres centres;
-  std::unique_ptr<CentreTree> tree;
+  std::vector<Node> nodes;  // nodes[0] is the root
 
-  // A nanoflann result set that reads each cluster whose centre it is handed
-  // and keeps the nearest point; the search radius shrinks with it.
-  struct NearestInClusters {
-    const Impl& index;
-    const Eigen::Vector3d& q;
-    double best_squared;
-    std::uint32_t best;
-    double worst = 0;  // squared centre distance beyond which no cluster can hold a closer point
-
-    NearestInClusters(const Impl& i, const Eigen::Vector3d& query, double squared, std::uint32_t point)
-        : index(i), q(query), best_squared(squared), best(point) {
-      update_worst();
-    }
-    void update_worst() {
-      const double r = std::sqrt(best_squared) * (1 + kSlack) + index.max_radius;
-      worst = r * r;
-    }
-    double worstDist() const { return worst; }
-    bool full() const { return true; }
-    bool addPoint(double, std::uint32_t c) {
-      const Cluster& k = index.clusters[c];
-      if (k.box.squaredExteriorDistance(q) > best_squared * (1 + kSlack)) return true;
-      const double before = best_squared;
-      const Eigen::Vector3d* p = index.points.data() + k.first;
-      for (std::uint32_t j = 0; j < k.count; ++j) {
-        const double d2 = (p[j] - q).squaredNorm();
-        if (d2 < best_squared) best_squared = d2, best = k.first + j;
+  // Fills node `index` with clusters [first, last), one quarter per child.
+  void build(std::uint32_t index, std::size_t first, std::size_t last) {
+    for (std::size_t c = 0; c < 4; ++c) {
+      const std::size_t a = first + (last - first) * c / 4, b = first + (last - first) * (c + 1) / 4;
+      Eigen::AlignedBox3d box;
+      std::uint32_t child = kNoChild;
+      if (b - a == 1) {
+        child = static_cast<std::uint32_t>(a) | kLeaf;
+        box = clusters[a].box;
+      } else if (b > a) {
+        child = static_cast<std::uint32_t>(nodes.size());
+        nodes.emplace_back();
+        build(child, a, b);
+        box = extent(child);
       }
-      if (best_squared < before) update_worst();
-      return true;
+      Node& n = nodes[index];  // after the recursion, which may move the nodes
+      n.child[c] = child;
+      for (int axis = 0; axis < 3; ++axis) {
+        // An empty slot's box is inverted: infinitely far from any query.
+        n.lo[axis][c] = child == kNoChild ? std::numeric_limits<float>::infinity() : round_down(box.min()[axis]);
+        n.hi[axis][c] = child == kNoChild ? -std::numeric_limits<float>::infinity() : round_up(box.max()[axis]);
+      }
     }
-  };
-
-  // The index of the point nearest to q. `hint`, when not npos, is any
-  // indexed point: its distance bounds the search from the start (the
-  // distance found is the same without it).
-  std::uint32_t nearest(const Eigen::Vector3d& q, std::uint32_t hint) const {
-    const bool warm = hint != kNoHint;
-    NearestInClusters search(*this, q, warm ? (points[hint] - q).squaredNorm() : std::numeric_limits<double>::infinity(),
-                             hint);
-    tree->findNeighbors(search, q.data(), SearchParameters());
-    return search.best;
+  }
+  // The box of everything under node `index`.
+  Eigen::AlignedBox3d extent(std::uint32_t index) const {
+    const Node& n = nodes[index];
+    Eigen::AlignedBox3d box;
+    for (int c = 0; c < 4; ++c)
+      if (n.child[c] != kNoChild)
+        box.extend(Eigen::AlignedBox3d(Eigen::Vector3d(n.lo[0][c], n.lo[1][c], n.lo[2][c]),
+                                       Eigen::Vector3d(n.hi[0][c], n.hi[1][c], n.hi[2][c])));
+    return box;
   }
 
-  static constexpr std::uint32_t kNoHint = std::numeric_limits<std::uint32_t>::max();
+  // The index of the point nearest to q. `hint` is any indexed point: its
+  // distance bounds the search from the root on; the distance found does not
+  // depend on it.
+  std::uint32_t nearest(const Eigen::Vector3d& q, std::uint32_t hint) const {
+    std::uint32_t best = hint;
+    double best_squared = (points[hint] - q).squaredNorm();
+    double bound = best_squared * (1 + kSlack);
+    // Depth-first, nearest child first. The tree is at most 16 levels deep
+    // (quarters of < 2^31 clusters), each level leaving at most 3 entries.
+    struct Entry {
+      std::uint32_t child;
+      double squared;
+    };
+    std::array<Entry, 64> stack;
+    std::size_t top = 0;
+    stack[top++] = {0, 0.0};
+    while (top > 0) {
+      const Entry e = stack[--top];
+      if (e.squared > bound) continue;
+      if (e.child & kLeaf) {
+        const Cluster& k = clusters[e.child & ~kLeaf];
+        const Eigen::Vector3d* p = points.data() + k.first;
+        const double before = best_squared;
+        for (std::uint32_t j = 0; j < k.count; ++j) {
+          const double d2 = (p[j] - q).squaredNorm();
+          if (d2 < best_squared) best_squared = d2, best = k.first + j;
+        }
+        if (best_squared < before) bound = best_squared * (1 + kSlack);
+        continue;
+      }
+      const Node& n = nodes[e.child];
+      Eigen::Array4d squared = Eigen::Array4d::Zero();
+      for (int axis = 0; axis < 3; ++axis) {
+        const Eigen::Array4d lo = Eigen::Map<const Eigen::Array4f>(n.lo[axis].data()).cast<double>();
+        const Eigen::Array4d hi = Eigen::Map<const Eigen::Array4f>(n.hi[axis].data()).cast<double>();
+        const Eigen::Array4d gap = (lo - q[axis]).max(q[axis] - hi).max(0.0);
+        squared += gap * gap;
+      }
+      // Push the children within the bound, farthest first.
+      std::array<Entry, 4> near;
+      std::size_t count = 0;
+      for (int c = 0; c < 4; ++c) {
+        if (squared[c] > bound) continue;
+        std::size_t i = count++;
+        for (; i > 0 && near[i - 1].squared < squared[c]; --i) near[i] = near[i - 1];
+        near[i] = {n.child[c], squared[c]};
+      }
+      for (std::size_t i = 0; i < count; ++i) stack[top++] = near[i];
+    }
+    return best;
+  }
 };
 
 Points to_points(const PointCloud& cloud) {
@@ -261,34 +289,13 @@ NearestPointIndex::NearestPointIndex(Points points, int threads) : impl_(std::ma
   std::vector<std::vector<Cluster>> parts(cuts.size() - 1);
   for_each_block(parts.size(), resolve_threads(threads), 1, [&](std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i)
-      cut_into_clusters(cuts[i], cuts[i + 1], static_cast<std::size_t>(cuts[i] - begin),
-                        std::numeric_limits<double>::infinity(), parts[i]);
+      cut_into_clusters(cuts[i], cuts[i + 1], static_cast<std::size_t>(cuts[i] - begin), parts[i]);
   });
   for (const auto& part : parts) m.clusters.insert(m.clusters.end(), part.begin(), part.end());
 
-  // The search radius grows by the widest cluster's radius, so a few wide
-  // ones (sparse or thin parts of the cloud) would slow every query: those
-  // wider than 1.5 times the median are cut further (on the fox mask's
-  // per-touch surfaces ~15% faster than 2 times; cluster sizes 16 to 64
-  // were within the noise of each other).
-  std::vector<double> radii;
-  for (const Cluster& c : m.clusters) radii.push_back(c.radius);
-  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
-  const double limit = 1.5 * radii[radii.size() / 2];
-  std::vector<Cluster> clusters;
-  clusters.reserve(m.clusters.size());
-  for (const Cluster& c : m.clusters) {
-    if (c.radius <= limit) clusters.push_back(c);
-    else cut_into_clusters(begin + c.first, begin + c.first + c.count, c.first, limit, clusters);
-  }
-  m.clusters = std::move(clusters);
-  for (const Cluster& c : m.clusters) m.max_radius = std::max(m.max_radius, c.radius);
-
-  m.centres.clusters = &m.clusters;
-  m.tree = std::make_unique<CentreTree>(
-      3, m.centres,
-      nanoflann::KDTreeSingleIndexAdaptorParams(kCentresPerLeaf, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex));
-  m.tree->buildIndex();
+  m.nodes.reserve(m.clusters.size() / 3 + 1);
+  m.nodes.emplace_back();
+  m.build(0, 0, m.clusters.size());
 }
 
 NearestPointIndex::NearestPointIndex(NearestPointIndex&&) noexcept = default;
@@ -300,7 +307,7 @@ const Points& NearestPointIndex::points() const { return impl_->points; }
 
 double NearestPointIndex::nearest_distance(const Eigen::Vector3d& query) const {
   if (!finite(query)) throw InputError("a query point has non-finite coordinates");
-  return (impl_->points[impl_->nearest(query, Impl::kNoHint)] - query).norm();
+  return (impl_->points[impl_->nearest(query, 0)] - query).norm();
 }
 
 std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, int threads) const {
@@ -312,13 +319,13 @@ std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, 
   const auto workers = std::min<std::size_t>(chunks, static_cast<std::size_t>(resolve_threads(threads)));
   for_each_block(workers, static_cast<int>(workers), 1, [&](std::size_t, std::size_t) {
     for (std::size_t chunk; (chunk = next_chunk.fetch_add(1)) < chunks;) {
-      std::uint32_t hint = Impl::kNoHint;
+      std::uint32_t previous = 0;  // the previous query's nearest point: any point will do for the first
       const std::size_t last = std::min(queries.size(), (chunk + 1) * kQueryChunk);
       for (std::size_t i = chunk * kQueryChunk; i < last; ++i) {
-        hint = impl_->nearest(queries[i], hint);
+        previous = impl_->nearest(queries[i], previous);
         // One formula from the point found: the same distance whatever hint,
         // and so whatever thread, led to it.
-        distances[i] = (impl_->points[hint] - queries[i]).norm();
+        distances[i] = (impl_->points[previous] - queries[i]).norm();
       }
     }
   });

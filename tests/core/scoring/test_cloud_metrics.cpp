@@ -1,6 +1,11 @@
 // Metrics on clouds with distances worked out by hand, agreement with a
-// brute-force reference on random clouds, metric selection and its names.
+// brute-force reference on random clouds and on a grid in any order, metric
+// selection and its names.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
 
 #include "random_points.hpp"
 #include "touchcloud/error.hpp"
@@ -87,6 +92,29 @@ TEST(CloudMetrics, AgreesWithBruteForceOnRandomClouds) {
     EXPECT_GT(s.precision, 0.0);  // the threshold splits both sides
     EXPECT_LT(s.recall, 1.0);
   }
+}
+
+TEST(CloudMetrics, AGridInScanOrderAndShuffledScoreTheSame) {
+  // A 120 x 120 grid over a wavy ground truth: in scan order the search
+  // walks the grid as given, shuffled it walks the locality order; both
+  // must give the brute-force distances.
+  Points gt_points, grid;
+  for (int i = 0; i < 200; ++i)
+    for (int j = 0; j < 200; ++j) gt_points.emplace_back(i * 0.5, j * 0.5, 2 * std::sin(i * 0.05) * std::cos(j * 0.07));
+  for (int i = 0; i < 120; ++i)
+    for (int j = 0; j < 120; ++j) grid.emplace_back(i * 0.8 + 0.1, j * 0.8 + 0.2, 1.5 + 0.01 * ((i * 7 + j) % 13));
+  Points shuffled = grid;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(13));
+  double reference = 0;
+  for (const auto& p : grid) reference += test::brute_force_nearest(p, gt_points);
+  reference /= static_cast<double>(grid.size());
+  scoring::ScoreOptions o;
+  o.metrics = MetricSelection::parse({"chamfer_est_to_gt"});
+  const NearestPointIndex index(gt_points);
+  const double in_scan_order = scoring::score_estimate(grid, index, o).chamfer_est_to_gt_mm;
+  const double in_any_order = scoring::score_estimate(shuffled, index, o).chamfer_est_to_gt_mm;
+  EXPECT_LE(test::relative_error(in_scan_order, reference), 1e-12);
+  EXPECT_EQ(in_scan_order, in_any_order);
 }
 
 TEST(CloudMetrics, SelectionLimitsWhatIsComputedAndReported) {

@@ -1,6 +1,7 @@
 // NearestPointIndex: hand-checkable distances, exact agreement with a brute
 // force scan on random clouds, beside median cuts, far above a sampled
-// surface and among sparse outliers; results independent of the thread
+// surface, among sparse outliers, between points closer than a float step
+// and in clouds too small to fill a node; results independent of the thread
 // count; refusals of empty and non-finite input.
 #include <gtest/gtest.h>
 
@@ -85,6 +86,32 @@ TEST(NearestPointIndex, SparseOutliersBesideADenseCloudMatchBruteForce) {
   const NearestPointIndex index(cloud);
   const std::vector<double> d = index.nearest_distances(queries);
   for (std::size_t i = 0; i < queries.size(); ++i) ASSERT_EQ(d[i], test::brute_force_nearest(queries[i], cloud)) << i;
+}
+
+TEST(NearestPointIndex, BoxesRoundedToFloatStillHoldEveryPoint) {
+  // Far from the origin a float step is ~0.008 mm: these points differ by
+  // far less, and the queries sit on them or between them. A box rounded
+  // to the nearest float instead of outward would prune the nearest point.
+  Points cloud;
+  for (int i = 0; i < 5000; ++i) cloud.emplace_back(100000.0 + i * 1e-7, -50000.0 - (i % 7) * 3e-8, 0.1 + i * 1e-9);
+  const NearestPointIndex index(cloud, 2);
+  Points queries(cloud.begin(), cloud.begin() + 300);
+  for (int i = 0; i < 300; ++i) queries.emplace_back(100000.0 + i * 1.7e-6 + 3e-8, -50000.0 + 1e-8, 0.1 + 2e-7);
+  const std::vector<double> d = index.nearest_distances(queries, 2);
+  for (std::size_t i = 0; i < 300; ++i) ASSERT_EQ(d[i], 0.0) << i;
+  for (std::size_t i = 300; i < queries.size(); ++i) ASSERT_EQ(d[i], test::brute_force_nearest(queries[i], cloud)) << i;
+}
+
+TEST(NearestPointIndex, SmallCloudsWithPartlyEmptyNodesMatchBruteForce) {
+  // 1 to 200 points: a root with one to seven clusters leaves child slots
+  // empty; every size is searched exactly.
+  for (std::size_t n : {1u, 2u, 31u, 33u, 65u, 97u, 130u, 200u}) {
+    const Points cloud = test::random_points(n, 10.0, 7 + n);
+    const Points queries = test::random_points(200, 15.0, 8);
+    const std::vector<double> d = NearestPointIndex(cloud, 1).nearest_distances(queries, 1);
+    for (std::size_t i = 0; i < queries.size(); ++i)
+      ASSERT_EQ(d[i], test::brute_force_nearest(queries[i], cloud)) << n << " points, query " << i;
+  }
 }
 
 TEST(NearestPointIndex, SameDistancesWhateverTheThreadCount) {

@@ -63,7 +63,8 @@ constexpr std::size_t kParallelBuildPoints = 65536;
 // orders; this much slack keeps rounding from pruning the nearest point.
 constexpr double kSlack = 1e-12;
 
-// A child reference: a node's index, or a cluster's with kLeaf set.
+// A child reference: a node's index, or with kLeaf set the index of a
+// cluster's first point (so points are fewer than kLeaf).
 constexpr std::uint32_t kLeaf = 0x80000000u;
 constexpr std::uint32_t kNoChild = 0xffffffffu;
 
@@ -73,11 +74,15 @@ struct Cluster {
 };
 
 // Four children's boxes side by side, axis by axis, so one pass measures all
-// four; float rounded outward (still holding every point), two cache lines.
+// four; float rounded outward (still holding every point). A leaf child's
+// point count is here too: a node and its clusters' extents are two cache
+// lines.
 struct alignas(64) Node {
   std::array<std::array<float, 4>, 3> lo, hi;  // [axis][child], mm
   std::array<std::uint32_t, 4> child{kNoChild, kNoChild, kNoChild, kNoChild};
+  std::array<std::uint8_t, 4> count{};  // points of a leaf child
 };
+static_assert(kClusterSize <= 255, "a cluster's point count is kept in a byte");
 
 float round_down(double v) {
   const auto f = static_cast<float>(v);
@@ -162,26 +167,28 @@ void sort_by_locality(Points& points) { sort_range_by_locality(points.data(), po
 
 struct NearestPointIndex::Impl {
   Points points;  // grouped by cluster
-  std::vector<Cluster> clusters;
   std::vector<Node> nodes;  // nodes[0] is the root
 
   // Fills node `index` with clusters [first, last), one quarter per child.
-  void build(std::uint32_t index, std::size_t first, std::size_t last) {
+  void build(const std::vector<Cluster>& clusters, std::uint32_t index, std::size_t first, std::size_t last) {
     for (std::size_t c = 0; c < 4; ++c) {
       const std::size_t a = first + (last - first) * c / 4, b = first + (last - first) * (c + 1) / 4;
       Eigen::AlignedBox3d box;
       std::uint32_t child = kNoChild;
+      std::uint8_t count = 0;
       if (b - a == 1) {
-        child = static_cast<std::uint32_t>(a) | kLeaf;
+        child = clusters[a].first | kLeaf;
+        count = static_cast<std::uint8_t>(clusters[a].count);
         box = clusters[a].box;
       } else if (b > a) {
         child = static_cast<std::uint32_t>(nodes.size());
         nodes.emplace_back();
-        build(child, a, b);
+        build(clusters, child, a, b);
         box = extent(child);
       }
       Node& n = nodes[index];  // after the recursion, which may move the nodes
       n.child[c] = child;
+      n.count[c] = count;
       for (int axis = 0; axis < 3; ++axis) {
         // An empty slot's box is inverted: infinitely far from any query.
         n.lo[axis][c] = child == kNoChild ? std::numeric_limits<float>::infinity() : round_down(box.min()[axis]);
@@ -211,21 +218,21 @@ struct NearestPointIndex::Impl {
     // (quarters of < 2^31 clusters), each level leaving at most 3 entries.
     struct Entry {
       std::uint32_t child;
+      std::uint32_t count;  // of a leaf's points
       double squared;
     };
     std::array<Entry, 64> stack;
     std::size_t top = 0;
-    stack[top++] = {0, 0.0};
+    stack[top++] = {0, 0, 0.0};
     while (top > 0) {
       const Entry e = stack[--top];
       if (e.squared > bound) continue;
       if (e.child & kLeaf) {
-        const Cluster& k = clusters[e.child & ~kLeaf];
-        const Eigen::Vector3d* p = points.data() + k.first;
+        const std::uint32_t first = e.child & ~kLeaf;
         const double before = best_squared;
-        for (std::uint32_t j = 0; j < k.count; ++j) {
-          const double d2 = (p[j] - q).squaredNorm();
-          if (d2 < best_squared) best_squared = d2, best = k.first + j;
+        for (std::uint32_t j = first; j < first + e.count; ++j) {
+          const double d2 = (points[j] - q).squaredNorm();
+          if (d2 < best_squared) best_squared = d2, best = j;
         }
         if (best_squared < before) bound = best_squared * (1 + kSlack);
         continue;
@@ -245,7 +252,7 @@ struct NearestPointIndex::Impl {
         if (squared[c] > bound) continue;
         std::size_t i = count++;
         for (; i > 0 && near[i - 1].squared < squared[c]; --i) near[i] = near[i - 1];
-        near[i] = {n.child[c], squared[c]};
+        near[i] = {n.child[c], n.count[c], squared[c]};
       }
       for (std::size_t i = 0; i < count; ++i) stack[top++] = near[i];
     }
@@ -267,9 +274,9 @@ int resolve_threads(int requested) {
 
 NearestPointIndex::NearestPointIndex(Points points, int threads) : impl_(std::make_unique<Impl>()) {
   if (points.empty()) throw InputError("cannot search an empty set of points");
-  // One index value is kept for "no point".
-  if (points.size() >= std::numeric_limits<std::uint32_t>::max())
-    throw InputError("cannot index " + std::to_string(points.size()) + " points (at most 2^32 - 2)");
+  // A point's index shares a word with the leaf flag.
+  if (points.size() >= kLeaf)
+    throw InputError("cannot index " + std::to_string(points.size()) + " points (at most 2^31 - 1)");
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!finite(points[i])) throw InputError("point " + std::to_string(i) + " has non-finite coordinates");
 
@@ -287,15 +294,16 @@ NearestPointIndex::NearestPointIndex(Points points, int threads) : impl_(std::ma
     cuts = {begin, split_at_median(begin, half), half, split_at_median(half, end), end};
   }
   std::vector<std::vector<Cluster>> parts(cuts.size() - 1);
+  std::vector<Cluster> clusters;
   for_each_block(parts.size(), resolve_threads(threads), 1, [&](std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i)
       cut_into_clusters(cuts[i], cuts[i + 1], static_cast<std::size_t>(cuts[i] - begin), parts[i]);
   });
-  for (const auto& part : parts) m.clusters.insert(m.clusters.end(), part.begin(), part.end());
+  for (const auto& part : parts) clusters.insert(clusters.end(), part.begin(), part.end());
 
-  m.nodes.reserve(m.clusters.size() / 3 + 1);
+  m.nodes.reserve(clusters.size() / 3 + 1);
   m.nodes.emplace_back();
-  m.build(0, 0, m.clusters.size());
+  m.build(clusters, 0, 0, clusters.size());
 }
 
 NearestPointIndex::NearestPointIndex(NearestPointIndex&&) noexcept = default;

@@ -29,13 +29,14 @@ double share_below(const std::vector<double>& distances, double threshold) {
   return static_cast<double>(within) / static_cast<double>(distances.size());
 }
 
-// How far warm-started searches move along `points` in this order: the sum of
-// log(1 + step / 1 mm). Logarithmic, as a long jump costs one search from
-// afar, not more for every mm of it.
-double walk_cost(const Points& points) {
+// Whether consecutive points are close enough to search in this order: the
+// mean of log(1 + step / 1 mm) is at most log 2, i.e. steps of about 1 mm or
+// less, with an occasional jump (a grid's row ends). Logarithmic, as a long
+// jump costs one search from afar, not more for every mm of it.
+bool in_scan_order(const Points& points) {
   double sum = 0;
   for (std::size_t i = 1; i < points.size(); ++i) sum += std::log1p((points[i] - points[i - 1]).norm());
-  return sum;
+  return sum <= std::log(2.0) * static_cast<double>(points.size());
 }
 
 std::vector<std::string> split_names(const std::vector<std::string>& entries) {
@@ -107,14 +108,15 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
   s.ground_truth_points = ground_truth.size();
   s.fscore_threshold_mm = options.metrics.fscore ? options.fscore_threshold_mm : 0.0;
 
-  // The search from the estimate goes in locality order, or in the
-  // estimate's own order when that is a better walk (a grid or a scan
-  // usually is: on the fox mask's 200 x 200 surfaces, 15% faster). The
+  // Searches start from the previous query's nearest point, so they run
+  // fastest when consecutive queries are close: an estimate in scan order
+  // (a grid, an image) is searched as given, any other in locality order.
+  // On the fox mask's 200 x 200 surfaces the grid's own order was 15% faster
+  // than locality order, and sorting 40,000 points takes ~4 ms more. The
   // metrics do not depend on the order.
   Points queries = estimate;
-  sort_by_locality(queries);
-  const Points& walk = walk_cost(estimate) < walk_cost(queries) ? estimate : queries;
-  const std::vector<double> est_to_gt = ground_truth.nearest_distances(walk, options.threads);
+  if (!in_scan_order(queries)) sort_by_locality(queries);
+  const std::vector<double> est_to_gt = ground_truth.nearest_distances(queries, options.threads);
   if (options.metrics.chamfer_est_to_gt) s.chamfer_est_to_gt_mm = mean(est_to_gt);
   if (!options.metrics.needs_gt_to_est()) return s;
 

@@ -84,14 +84,16 @@ struct alignas(64) Node {
 };
 static_assert(kClusterSize <= 255, "a cluster's point count is kept in a byte");
 
+// The float nearest v on each side; past float's range, the largest float
+// or infinity (converting a double beyond it would be undefined).
 float round_down(double v) {
+  constexpr double top = std::numeric_limits<float>::max();
+  if (v > top) return std::numeric_limits<float>::max();
+  if (v < -top) return -std::numeric_limits<float>::infinity();
   const auto f = static_cast<float>(v);
   return static_cast<double>(f) <= v ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
 }
-float round_up(double v) {
-  const auto f = static_cast<float>(v);
-  return static_cast<double>(f) >= v ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
-}
+float round_up(double v) { return -round_down(-v); }
 
 bool finite(const Eigen::Vector3d& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 

@@ -102,6 +102,18 @@ TEST(NearestPointIndex, BoxesRoundedToFloatStillHoldEveryPoint) {
   for (std::size_t i = 300; i < queries.size(); ++i) ASSERT_EQ(d[i], test::brute_force_nearest(queries[i], cloud)) << i;
 }
 
+TEST(NearestPointIndex, CoordinatesBeyondFloatRangeAreSearchedExactly) {
+  // Boxes past float's range become the largest float or infinite.
+  Points cloud = test::random_points(3000, 10.0, 9);
+  cloud.emplace_back(1e39, 0.0, 0.0);
+  cloud.emplace_back(-3e39, 5.0, 1e-45);
+  cloud.emplace_back(2e39, -2e39, 4e39);
+  const NearestPointIndex index(cloud, 2);
+  const Points queries{{1e39, 1.0, 0.0}, {-3e39, 0.0, 0.0}, {2e39, -2e39, 3.9e39}, {1.5e39, 0, 0}, {1, 2, 3}};
+  const std::vector<double> d = index.nearest_distances(queries, 2);
+  for (std::size_t i = 0; i < queries.size(); ++i) ASSERT_EQ(d[i], test::brute_force_nearest(queries[i], cloud)) << i;
+}
+
 TEST(NearestPointIndex, SmallCloudsWithPartlyEmptyNodesMatchBruteForce) {
   // 1 to 200 points: a root with one to seven clusters leaves child slots
   // empty; every size is searched exactly.

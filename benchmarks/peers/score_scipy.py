@@ -3,10 +3,12 @@
 
     /usr/bin/python3 benchmarks/peers/score_scipy.py DATA_DIR [--repeats N] [--json]
 
-Reads DATA_DIR/ground_truth.pcd and DATA_DIR/estimate.pcd (binary PCD, float
-x y z, as bench_score --write-data writes them), converts them to float64 and
-times, like bench_score:
+Reads DATA_DIR/ground_truth.pcd, DATA_DIR/estimate.pcd and
+DATA_DIR/estimate_far.pcd (binary PCD, float x y z, as bench_score
+--write-data writes them), converts them to float64 and times, like
+bench_score:
   chamfer_est_to_gt  cKDTree(ground truth) + query(estimate, workers=-1)
+  chamfer_est_to_gt_far  the same with the estimate 10 mm above the surface
   all_metrics        the above + cKDTree(estimate) + query(ground truth,
                      workers=-1) and the same reductions (means, max, shares)
 Run it with Debian's /usr/bin/python3 (python3-scipy); `python3` on PATH may
@@ -62,6 +64,7 @@ def main():
 
     gt = read_pcd_xyz(os.path.join(args.data_dir, "ground_truth.pcd"), np)
     est = read_pcd_xyz(os.path.join(args.data_dir, "estimate.pcd"), np)
+    far = read_pcd_xyz(os.path.join(args.data_dir, "estimate_far.pcd"), np)
 
     # cKDTree's defaults (balanced_tree=True, compact_nodes=True) and the
     # sliding-midpoint build SciPy documents as faster to build on large data;
@@ -72,6 +75,10 @@ def main():
         d_est, _ = cKDTree(gt, **opts).query(est, k=1, workers=-1)
         return d_est.mean()
 
+    def chamfer_est_to_gt_far(opts):
+        d_far, _ = cKDTree(gt, **opts).query(far, k=1, workers=-1)
+        return d_far.mean()
+
     def all_metrics(opts):
         d_est, _ = cKDTree(gt, **opts).query(est, k=1, workers=-1)
         d_gt, _ = cKDTree(est, **opts).query(gt, k=1, workers=-1)
@@ -81,7 +88,8 @@ def main():
         return d_est.mean(), d_gt.mean(), max(d_est.max(), d_gt.max()), fscore
 
     results = {}
-    for name, fn in (("chamfer_est_to_gt", chamfer_est_to_gt), ("all_metrics", all_metrics)):
+    for name, fn in (("chamfer_est_to_gt", chamfer_est_to_gt), ("chamfer_est_to_gt_far", chamfer_est_to_gt_far),
+                     ("all_metrics", all_metrics)):
         per_variant = {}
         for variant, opts in variants.items():
             times, value = [], None

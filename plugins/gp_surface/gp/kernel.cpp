@@ -48,22 +48,6 @@ void Kernel::covariance_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
   }
 }
 
-void Kernel::d_log_lengthscale_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
-  const double s2 = h_.signal_variance_mm2;
-  Eigen::ArrayXd e(v.size());
-  if (kind_ == KernelKind::rbf) {
-    v *= inv_lengthscale2_;  // t
-    e = -0.5 * v;
-    exp_in_place(e);
-    v = s2 * v * e;
-  } else {
-    v = (v * (5.0 * inv_lengthscale2_)).sqrt();  // s
-    e = -v;
-    exp_in_place(e);
-    v = s2 * (v.square() * (1.0 / 3.0)) * (1.0 + v) * e;
-  }
-}
-
 void Kernel::covariance_and_d_log_lengthscale(Eigen::Map<Eigen::ArrayXd> v, Eigen::Map<Eigen::ArrayXd> dk) const {
   const double s2 = h_.signal_variance_mm2;
   if (kind_ == KernelKind::rbf) {

@@ -24,7 +24,6 @@ class Kernel {
 
   // Vectorised, in place: squared distances in, values out.
   void covariance_in_place(Eigen::Map<Eigen::ArrayXd> r2_mm2) const;
-  void d_log_lengthscale_in_place(Eigen::Map<Eigen::ArrayXd> r2_mm2) const;
   // Both at once (one exponential): r2 in, k out; dk receives dk / d log(lengthscale).
   void covariance_and_d_log_lengthscale(Eigen::Map<Eigen::ArrayXd> r2_to_k, Eigen::Map<Eigen::ArrayXd> dk) const;
 

@@ -60,6 +60,34 @@ void add_run(SearchResult& result, StartReport report) {
   result.starts.push_back(std::move(report));
 }
 
+// L-BFGS from each start: every run's report, and the best point reached
+// (empty, at kNoLml, when none could be evaluated).
+struct Restarts {
+  std::vector<StartReport> reports;
+  Eigen::VectorXd best;
+  double best_value = kNoLml;
+};
+Restarts lbfgs_restarts(const BoxObjective& f, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                        const std::vector<Eigen::VectorXd>& starts, const LbfgsSettings& lbfgs,
+                        const std::function<Hyperparameters(const Eigen::VectorXd&)>& at) {
+  Restarts out;
+  for (const Eigen::VectorXd& start : starts) {
+    const BoxRun run = lbfgs_in_box(f, lo, hi, start, lbfgs);
+    out.reports.push_back(report_of(run, at));
+    if (run.best_value > out.best_value) {
+      out.best_value = run.best_value;
+      out.best = run.best;
+    }
+  }
+  return out;
+}
+
+// The restarts as the search's own runs: the best becomes the result.
+void add_restarts(SearchResult& result, Restarts restarts) {
+  for (StartReport& report : restarts.reports) add_run(result, std::move(report));
+  result.initial_lml = result.starts.front().start_lml;
+}
+
 }  // namespace
 
 SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& bounds,
@@ -75,12 +103,12 @@ SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& boun
     if (gradient) *gradient = g;
     return true;
   };
-  const auto at = [](const Eigen::VectorXd& x) { return from_log(x); };
+  std::vector<Eigen::VectorXd> from;
+  for (const Hyperparameters& start : starts) from.push_back(to_log(start));
   SearchResult result;
   result.bounds = bounds;
-  for (const Hyperparameters& start : starts)
-    add_run(result, report_of(lbfgs_in_box(objective, lo, hi, to_log(start), lbfgs_settings(options)), at));
-  result.initial_lml = result.starts.front().start_lml;
+  add_restarts(result, lbfgs_restarts(objective, lo, hi, from, lbfgs_settings(options),
+                                      [](const Eigen::VectorXd& x) { return from_log(x); }));
   if (!(result.lml > kNoLml)) {
     std::ostringstream msg;
     msg << "GP hyperparameter search: the likelihood could not be evaluated at any point from " << starts.size()
@@ -245,19 +273,13 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
     }
   }
 
+  std::vector<Eigen::VectorXd> start_points_in_box;
+  for (const Hyperparameters& start : starts) start_points_in_box.push_back(box.of(start));
   const bool screen = options.screening_points > 0 && n > options.screening_points;
   if (!screen) {
-    Eigen::VectorXd best;
-    double best_value = kNoLml;
-    for (const Hyperparameters& start : starts) {
-      const BoxRun run = lbfgs_in_box(f, box.lo, box.hi, box.of(start), lbfgs);
-      add_run(result, report_of(run, at_full));
-      if (run.best_value > best_value) {
-        best_value = run.best_value;
-        best = run.best;
-      }
-    }
-    result.initial_lml = result.starts.front().start_lml;
+    Restarts restarts = lbfgs_restarts(f, box.lo, box.hi, start_points_in_box, lbfgs, at_full);
+    const Eigen::VectorXd best = restarts.best;
+    add_restarts(result, std::move(restarts));
     if (!(result.lml > kNoLml))
       fail("the likelihood could not be evaluated at any point from " + std::to_string(starts.size()) + " starts");
     // The curvature for a later warm start (two gradients at most
@@ -277,16 +299,11 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
     const auto [sub_xy, sub_z] = subset_of_runs(xy_mm, z_mm, m, kSubsetRuns);
     Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter);
     const BoxObjective fs = sub.objective();
-    double best = kNoLml;
-    for (const Hyperparameters& start : starts) {
-      const BoxRun run = lbfgs_in_box(fs, box.lo, box.hi, box.of(start), lbfgs);
-      result.screening.push_back(report_of(run, [&sub](const Eigen::VectorXd& p) { return sub.at(p); }));
-      if (run.best_value > best) {
-        best = run.best_value;
-        x = run.best;
-      }
-    }
-    if (best > kNoLml) hessian = negative_hessian(fs, x);
+    Restarts restarts =
+        lbfgs_restarts(fs, box.lo, box.hi, start_points_in_box, lbfgs, [&sub](const Eigen::VectorXd& p) { return sub.at(p); });
+    result.screening = std::move(restarts.reports);
+    x = restarts.best;
+    if (restarts.best_value > kNoLml) hessian = negative_hessian(fs, x);
   }
   for (Eigen::Index next = 2 * m; x.size() > 0 && 2 * next <= n; next *= 2) {
     const auto [sub_xy, sub_z] = subset_of_runs(xy_mm, z_mm, next, kSubsetRuns);

@@ -108,15 +108,15 @@ struct SearchResult {
 // hyperparameters theta; false when it cannot.
 using LmlFunction = std::function<bool(const LogHyperparameters& theta, double& lml, Eigen::Vector3d* gradient)>;
 
-// The optimiser on its own, for any likelihood of all three parameters (no
-// profile); starts are clamped into the bounds. RunError when no start can be
-// evaluated.
+// L-BFGS restarts, as select_hyperparameters runs them, on any likelihood of
+// all three parameters (no profile, no subsets); starts are clamped into the
+// bounds. RunError when no start can be evaluated.
 SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& bounds,
                           const std::vector<Hyperparameters>& starts, const SearchOptions& options);
 
-// Bounds from the data, starts from the data (or options), then maximise_lml
-// on the exact GP likelihood. InputError for too few points, all points at one
-// (x, y) or non-finite values.
+// Bounds from the data, starts from the data (or options), then the search
+// described at the top on the profiled exact GP likelihood. InputError for
+// too few points, all points at one (x, y) or non-finite values.
 SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm,
                                     const SearchOptions& options = {});
 

@@ -244,13 +244,17 @@ Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen:
   // exp(-(dx^2 + dy^2) / 2l^2) = exp(-dx^2 / 2l^2) exp(-dy^2 / 2l^2).
   const double l = kernel_.hyperparameters().lengthscale_mm, c = -0.5 / (l * l);
   const Eigen::VectorXd& alpha = weights();
+  // One axis's factor for a centred training coordinate down a column:
+  // exp(c (g - centre - coordinate)^2).
+  const auto axis_factor = [c](auto column, const Eigen::VectorXd& grid_mm, double centre_mm, double coordinate_mm) {
+    column.array() = (grid_mm.array() - centre_mm - coordinate_mm).square() * c;
+    exp_in_place(column.array());
+  };
   Eigen::MatrixXd ex(nx, n_), ey(ny, n_);
   for (Eigen::Index p = 0; p < n_; ++p) {
-    ex.col(p).array() = (xs_mm.array() - centring_.x_mm - x_[p]).square() * c;
-    exp_in_place(ex.col(p).array());
+    axis_factor(ex.col(p), xs_mm, centring_.x_mm, x_[p]);
     ex.col(p) *= alpha[p];
-    ey.col(p).array() = (ys_mm.array() - centring_.y_mm - y_[p]).square() * c;
-    exp_in_place(ey.col(p).array());
+    axis_factor(ey.col(p), ys_mm, centring_.y_mm, y_[p]);
   }
   Eigen::MatrixXd out = kernel_.hyperparameters().signal_variance_mm2 * product_transposed(ex, ey);
   out.array() += centring_.z_mm;

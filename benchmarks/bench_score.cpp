@@ -102,26 +102,18 @@ void add_counters(benchmark::State& state) {
 }
 
 // The paper's Eq. 11: index the ground truth, query every estimated point.
-void BM_ChamferEstToGt(benchmark::State& state) {
+void chamfer_est_to_gt(benchmark::State& state, const Points& estimate) {
   ScoreOptions o;
   o.metrics = MetricSelection::parse({"chamfer_est_to_gt"});
   for (auto _ : state) {
     const NearestPointIndex gt(data().ground_truth);
-    benchmark::DoNotOptimize(score_estimate(data().estimate, gt, o).chamfer_est_to_gt_mm);
+    benchmark::DoNotOptimize(score_estimate(estimate, gt, o).chamfer_est_to_gt_mm);
   }
   add_counters(state);
 }
-
+void BM_ChamferEstToGt(benchmark::State& state) { chamfer_est_to_gt(state, data().estimate); }
 // The same, from the estimate 10 mm above the surface.
-void BM_ChamferEstToGtFar(benchmark::State& state) {
-  ScoreOptions o;
-  o.metrics = MetricSelection::parse({"chamfer_est_to_gt"});
-  for (auto _ : state) {
-    const NearestPointIndex gt(data().ground_truth);
-    benchmark::DoNotOptimize(score_estimate(data().far, gt, o).chamfer_est_to_gt_mm);
-  }
-  add_counters(state);
-}
+void BM_ChamferEstToGtFar(benchmark::State& state) { chamfer_est_to_gt(state, data().far); }
 
 // Every metric: both directions (a second index over the estimate, and a
 // query from every ground-truth point).

@@ -95,7 +95,8 @@ Score CloudScore::to_score() const {
   return s;
 }
 
-CloudScore score_estimate(const Points& estimate, const NearestPointIndex& ground_truth, const ScoreOptions& options) {
+CloudScore score_estimate(const Points& estimate, const NearestPointIndex& ground_truth, const ScoreOptions& options,
+                          NearestMemo* memo) {
   if (estimate.empty()) throw InputError("the estimate has no points");
   if (!(options.fscore_threshold_mm > 0) || !std::isfinite(options.fscore_threshold_mm))
     throw InputError("the F-score threshold must be a positive number of mm, not " +
@@ -116,7 +117,8 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
   // metrics do not depend on the order.
   Points queries = estimate;
   if (!in_scan_order(queries)) sort_by_locality(queries);
-  const std::vector<double> est_to_gt = ground_truth.nearest_distances(queries, options.threads);
+  const std::vector<double> est_to_gt = memo ? ground_truth.nearest_distances(queries, *memo, options.threads)
+                                              : ground_truth.nearest_distances(queries, options.threads);
   if (options.metrics.chamfer_est_to_gt) s.chamfer_est_to_gt_mm = mean(est_to_gt);
   if (!options.metrics.needs_gt_to_est()) return s;
 

@@ -211,11 +211,24 @@ struct NearestPointIndex::Impl {
 
   // The index of the point nearest to q. `hint` is any indexed point: its
   // distance bounds the search from the root on; the distance found does not
-  // depend on it.
-  std::uint32_t nearest(const Eigen::Vector3d& q, std::uint32_t hint) const {
+  // depend on it. With kSecond, *second_squared is set to the squared
+  // distance of the next nearest point (infinity if there is none), and the
+  // search bounds by it instead.
+  template <bool kSecond = false>
+  std::uint32_t nearest(const Eigen::Vector3d& q, std::uint32_t hint, double* second_squared = nullptr) const {
     std::uint32_t best = hint;
     double best_squared = (points[hint] - q).squaredNorm();
-    double bound = best_squared * (1 + kSlack);
+    double second = std::numeric_limits<double>::infinity();
+    if constexpr (kSecond) {
+      // The hint's neighbour in memory, a point of the same cluster or the
+      // next, bounds the second-nearest distance from the start.
+      const std::uint32_t other = hint + 1 < points.size() ? hint + 1 : hint - (hint > 0);
+      if (other != hint) {
+        second = (points[other] - q).squaredNorm();
+        if (second < best_squared) std::swap(second, best_squared), best = other;
+      }
+    }
+    double bound = (kSecond ? second : best_squared) * (1 + kSlack);
     // Depth-first, nearest child first. The tree is at most 16 levels deep
     // (quarters of < 2^31 clusters), each level leaving at most 3 entries.
     struct Entry {
@@ -231,12 +244,22 @@ struct NearestPointIndex::Impl {
       if (e.squared > bound) continue;
       if (e.child & kLeaf) {
         const std::uint32_t first = e.child & ~kLeaf;
-        const double before = best_squared;
-        for (std::uint32_t j = first; j < first + e.count; ++j) {
-          const double d2 = (points[j] - q).squaredNorm();
-          if (d2 < best_squared) best_squared = d2, best = j;
+        if constexpr (kSecond) {
+          const double before = second;
+          for (std::uint32_t j = first; j < first + e.count; ++j) {
+            const double d2 = (points[j] - q).squaredNorm();
+            if (d2 < best_squared) second = best_squared, best_squared = d2, best = j;
+            else if (d2 < second && j != best) second = d2;
+          }
+          if (second < before) bound = second * (1 + kSlack);
+        } else {
+          const double before = best_squared;
+          for (std::uint32_t j = first; j < first + e.count; ++j) {
+            const double d2 = (points[j] - q).squaredNorm();
+            if (d2 < best_squared) best_squared = d2, best = j;
+          }
+          if (best_squared < before) bound = best_squared * (1 + kSlack);
         }
-        if (best_squared < before) bound = best_squared * (1 + kSlack);
         continue;
       }
       const Node& n = nodes[e.child];
@@ -258,7 +281,22 @@ struct NearestPointIndex::Impl {
       }
       for (std::size_t i = 0; i < count; ++i) stack[top++] = near[i];
     }
+    if constexpr (kSecond) *second_squared = second;
     return best;
+  }
+
+  // Searches queries [first, last) on the calling thread, each from the
+  // previous one's nearest point; calls found(i, nearest point's index,
+  // second-nearest squared distance) for each query i that `skip(i)` leaves.
+  template <bool kSecond, class Skip, class Found>
+  void search_range(const Points& queries, std::size_t first, std::size_t last, Skip skip, Found found) const {
+    std::uint32_t previous = 0;  // any point will do for the first query
+    for (std::size_t i = first; i < last; ++i) {
+      if (skip(i)) continue;
+      double second_squared = 0;
+      previous = nearest<kSecond>(queries[i], previous, &second_squared);
+      found(i, previous, second_squared);
+    }
   }
 };
 
@@ -320,25 +358,77 @@ double NearestPointIndex::nearest_distance(const Eigen::Vector3d& query) const {
   return (impl_->points[impl_->nearest(query, 0)] - query).norm();
 }
 
-std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, int threads) const {
+namespace {
+
+void check_queries(const Points& queries) {
   for (std::size_t i = 0; i < queries.size(); ++i)
     if (!finite(queries[i])) throw InputError("query point " + std::to_string(i) + " has non-finite coordinates");
-  std::vector<double> distances(queries.size());
-  const std::size_t chunks = (queries.size() + kQueryChunk - 1) / kQueryChunk;
+}
+
+// Runs chunk(first, last) over [0, n) in chunks of kQueryChunk that threads
+// take as they finish the last: the cost of a query varies by orders of
+// magnitude across a surface.
+template <class Chunk>
+void for_each_chunk(std::size_t n, int threads, Chunk chunk) {
+  const std::size_t chunks = (n + kQueryChunk - 1) / kQueryChunk;
   std::atomic<std::size_t> next_chunk{0};
   const auto workers = std::min<std::size_t>(chunks, static_cast<std::size_t>(resolve_threads(threads)));
   for_each_block(workers, static_cast<int>(workers), 1, [&](std::size_t, std::size_t) {
-    for (std::size_t chunk; (chunk = next_chunk.fetch_add(1)) < chunks;) {
-      std::uint32_t previous = 0;  // the previous query's nearest point: any point will do for the first
-      const std::size_t last = std::min(queries.size(), (chunk + 1) * kQueryChunk);
-      for (std::size_t i = chunk * kQueryChunk; i < last; ++i) {
-        previous = impl_->nearest(queries[i], previous);
-        // One formula from the point found: the same distance whatever hint,
-        // and so whatever thread, led to it.
-        distances[i] = (impl_->points[previous] - queries[i]).norm();
-      }
-    }
+    for (std::size_t c; (c = next_chunk.fetch_add(1)) < chunks;)
+      chunk(c * kQueryChunk, std::min(n, (c + 1) * kQueryChunk));
   });
+}
+
+}  // namespace
+
+std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, int threads) const {
+  check_queries(queries);
+  std::vector<double> distances(queries.size());
+  for_each_chunk(queries.size(), threads, [&](std::size_t first, std::size_t last) {
+    impl_->search_range<false>(
+        queries, first, last, [](std::size_t) { return false; },
+        [&](std::size_t i, std::uint32_t nearest, double) {
+          // One formula from the point found: the same distance whatever
+          // hint, and so whatever thread, led to it.
+          distances[i] = (impl_->points[nearest] - queries[i]).norm();
+        });
+  });
+  return distances;
+}
+
+std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, NearestMemo& memo, int threads) const {
+  check_queries(queries);
+  if (memo.index != this || memo.entries.size() != queries.size()) {
+    memo.entries.assign(queries.size(), NearestMemo::Entry{});
+    memo.index = this;
+  }
+  std::vector<double> distances(queries.size());
+  std::atomic<std::size_t> reused{0};
+  for_each_chunk(queries.size(), threads, [&](std::size_t first, std::size_t last) {
+    std::size_t reused_here = 0;
+    // A query that moved by `moved` from the memo's is at most `moved`
+    // nearer to any other point and farther from the memo's nearest one, so
+    // that point is still the nearest while 2 * moved < margin. The slack
+    // covers the rounding of the three distances, each a few units in the
+    // last place.
+    const auto remembered = [&](std::size_t i) {
+      const NearestMemo::Entry& e = memo.entries[i];
+      if (!(e.margin > 0)) return false;
+      const double moved = (queries[i] - e.query).norm();
+      if (!(2 * moved + kSlack * (moved + e.margin + (e.nearest - e.query).norm()) < e.margin)) return false;
+      distances[i] = (e.nearest - queries[i]).norm();
+      ++reused_here;
+      return true;
+    };
+    impl_->search_range<true>(queries, first, last, remembered,
+                              [&](std::size_t i, std::uint32_t nearest, double second_squared) {
+                                const Eigen::Vector3d& p = impl_->points[nearest];
+                                distances[i] = (p - queries[i]).norm();
+                                memo.entries[i] = {queries[i], p, std::sqrt(second_squared) - distances[i]};
+                              });
+    reused += reused_here;
+  });
+  memo.reused = reused;
   return distances;
 }
 

@@ -1,6 +1,7 @@
 // Metrics on clouds with distances worked out by hand, agreement with a
-// brute-force reference on random clouds and on a grid in any order, metric
-// selection and its names.
+// brute-force reference on random clouds and on a grid in any order, the
+// same metrics with a memo across a sequence of estimates, metric selection
+// and its names.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -115,6 +116,32 @@ TEST(CloudMetrics, AGridInScanOrderAndShuffledScoreTheSame) {
   const double in_any_order = scoring::score_estimate(shuffled, index, o).chamfer_est_to_gt_mm;
   EXPECT_LE(test::relative_error(in_scan_order, reference), 1e-12);
   EXPECT_EQ(in_scan_order, in_any_order);
+}
+
+TEST(CloudMetrics, AMemoAcrossEstimatesChangesNoMetric) {
+  // A grid estimate over a wavy ground truth, lowered step by step towards
+  // it, one corner more than the rest, as a surface converges over touches;
+  // every metric equals the memo-free score at each step.
+  Points gt_points, grid;
+  for (int i = 0; i < 150; ++i)
+    for (int j = 0; j < 150; ++j) gt_points.emplace_back(i * 0.4, j * 0.4, std::sin(i * 0.05) * std::cos(j * 0.07));
+  for (int i = 0; i < 80; ++i)
+    for (int j = 0; j < 80; ++j) grid.emplace_back(i * 0.75, j * 0.75, 1.0);
+  const NearestPointIndex index(gt_points);
+  scoring::NearestMemo memo;
+  std::size_t reused = 0;
+  for (int step = 0; step < 5; ++step) {
+    const scoring::CloudScore with = scoring::score_estimate(grid, index, {}, &memo);
+    const scoring::CloudScore without = scoring::score_estimate(grid, index);
+    EXPECT_EQ(with.chamfer_est_to_gt_mm, without.chamfer_est_to_gt_mm) << step;
+    EXPECT_EQ(with.chamfer_gt_to_est_mm, without.chamfer_gt_to_est_mm) << step;
+    EXPECT_EQ(with.hausdorff_mm, without.hausdorff_mm) << step;
+    EXPECT_EQ(with.fscore, without.fscore) << step;
+    reused += memo.reused;
+    for (auto& p : grid)
+      if (p.x() < 20 && p.y() < 20) p.z() -= 0.2;
+  }
+  EXPECT_GT(reused, grid.size());  // the rest of the grid did not move after the first step
 }
 
 TEST(CloudMetrics, SelectionLimitsWhatIsComputedAndReported) {

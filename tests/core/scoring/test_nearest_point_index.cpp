@@ -2,7 +2,8 @@
 // force scan on random clouds, beside median cuts, far above a sampled
 // surface, among sparse outliers, between points closer than a float step
 // and in clouds too small to fill a node; results independent of the thread
-// count; refusals of empty and non-finite input.
+// count; refusals of empty and non-finite input. A memo of earlier searches
+// gives the same distances, bit for bit, and saves the searches it can.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -165,9 +166,82 @@ TEST(NearestPointIndex, LocalityOrderKeepsNeighboursTogether) {
   EXPECT_LT(mean_step(grid), 2.0);
 }
 
+TEST(NearestPointIndex, MemoReusesANearestPointOnlyWithinHalfItsMargin) {
+  // Two points 2 mm apart on x; a query at x = 0.5 is 0.5 mm from the first
+  // and 1.5 mm from the second: a margin of 1 mm. The memo keeps the query
+  // it searched from, so drift adds up over calls.
+  const NearestPointIndex index(Points{{0, 0, 0}, {2, 0, 0}});
+  scoring::NearestMemo memo;
+  const auto at = [&](double x) { return index.nearest_distances(Points{{x, 0, 0}}, memo); };
+  EXPECT_EQ(at(0.5), std::vector<double>{0.5});
+  EXPECT_EQ(memo.reused, 0u);
+  EXPECT_DOUBLE_EQ(memo.entries[0].margin, 1.0);
+  EXPECT_EQ(at(0.9), std::vector<double>{0.9});  // moved 0.4 from 0.5: 2 x 0.4 < 1
+  EXPECT_EQ(memo.reused, 1u);
+  EXPECT_EQ(at(0.99), std::vector<double>{0.99});  // 0.49 from 0.5, still within
+  EXPECT_EQ(memo.reused, 1u);
+  const std::vector<double> past = at(1.05);  // 0.55 from 0.5: searched; the second point is nearer
+  EXPECT_EQ(memo.reused, 0u);
+  EXPECT_NEAR(past[0], 0.95, 1e-12);
+  EXPECT_EQ(memo.entries[0].nearest, Eigen::Vector3d(2, 0, 0));
+}
+
+TEST(NearestPointIndex, MemoGivesTheSearchedDistancesBitForBit) {
+  // A sampled surface with a bump and a 60 x 60 grid of queries above it,
+  // moved between calls as a surface estimate moves between touches: not
+  // at all, by 1e-7 mm, by 0.3 mm around one spot, and by 4 mm everywhere.
+  Points surface = test::random_points(100000, 30.0, 8);
+  const auto bump = [](double x, double y) { return 2.0 * std::exp(-(x * x + y * y) / 50.0); };
+  for (auto& p : surface) p.z() = bump(p.x(), p.y());
+  const NearestPointIndex index(surface, 2);
+  Points queries;
+  for (int i = 0; i < 60; ++i)
+    for (int j = 0; j < 60; ++j) {
+      const double x = -15.0 + i * 0.5, y = -15.0 + j * 0.5;
+      queries.emplace_back(x, y, bump(x, y) + 0.4 + 0.2 * std::sin(x));
+    }
+  scoring::NearestMemo memo;
+  const auto check = [&](const char* step) {
+    const std::vector<double> remembered = index.nearest_distances(queries, memo, 2);
+    EXPECT_EQ(remembered, index.nearest_distances(queries, 2)) << step;
+    for (std::size_t i = 0; i < queries.size(); i += 97)
+      EXPECT_EQ(remembered[i], test::brute_force_nearest(queries[i], surface)) << step << ", query " << i;
+    return memo.reused;
+  };
+  EXPECT_EQ(check("first call"), 0u);
+  EXPECT_EQ(check("unchanged"), queries.size());
+  for (auto& q : queries) q.z() += 1e-7;
+  EXPECT_GE(check("moved by 1e-7 mm"), queries.size() * 9 / 10);
+  std::size_t moved = 0;
+  for (auto& q : queries)
+    if (q.head<2>().norm() < 5.0) q.z() += 0.3, ++moved;
+  const std::size_t reused_after_spot = check("moved by 0.3 mm around the origin");
+  EXPECT_GT(moved, 300u);
+  EXPECT_LE(reused_after_spot, queries.size() - moved);
+  EXPECT_GE(reused_after_spot, (queries.size() - moved) * 9 / 10);
+  for (auto& q : queries) q.z() += 4.0;
+  EXPECT_EQ(check("moved by 4 mm"), 0u);
+}
+
+TEST(NearestPointIndex, MemoOfAnotherIndexOrQueryCountStartsAfresh) {
+  const Points queries = test::random_points(2000, 12.0, 9);
+  const NearestPointIndex a(test::random_points(20000, 10.0, 10)), b(test::random_points(20000, 10.0, 11));
+  scoring::NearestMemo memo;
+  a.nearest_distances(queries, memo);
+  EXPECT_EQ(b.nearest_distances(queries, memo), b.nearest_distances(queries));
+  EXPECT_EQ(memo.reused, 0u);
+  EXPECT_EQ(memo.index, &b);
+  const Points fewer(queries.begin(), queries.begin() + 1500);
+  EXPECT_EQ(b.nearest_distances(fewer, memo), b.nearest_distances(fewer));
+  EXPECT_EQ(memo.reused, 0u);
+  EXPECT_EQ(memo.entries.size(), fewer.size());
+}
+
 TEST(NearestPointIndex, RefusesEmptyAndNonFiniteInput) {
   EXPECT_THROW(NearestPointIndex(Points{}), InputError);
   EXPECT_THROW(NearestPointIndex(Points{{0, 0, 0}, {std::nan(""), 0, 0}}), InputError);
   const NearestPointIndex index(Points{{0, 0, 0}});
   EXPECT_THROW(index.nearest_distances(Points{{0, INFINITY, 0}}), InputError);
+  scoring::NearestMemo memo;
+  EXPECT_THROW(index.nearest_distances(Points{{0, 0, NAN}}, memo), InputError);
 }

@@ -62,6 +62,10 @@ struct CloudScore {
 
 // Scores `estimate` (at least one point) against indexed ground truth.
 // InputError for an empty estimate, a non-positive threshold or no metric.
-CloudScore score_estimate(const Points& estimate, const NearestPointIndex& ground_truth, const ScoreOptions& options = {});
+// With a memo, the estimate -> ground truth searches reuse what the last
+// call with it proved (for a sequence of estimates that each change little,
+// such as the surface after each touch); the metrics are the same.
+CloudScore score_estimate(const Points& estimate, const NearestPointIndex& ground_truth, const ScoreOptions& options = {},
+                          NearestMemo* memo = nullptr);
 
 }  // namespace touchcloud::scoring

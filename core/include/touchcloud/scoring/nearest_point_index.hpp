@@ -27,6 +27,24 @@ void sort_by_locality(Points& points);
 // The number of threads to use: `requested`, or every hardware thread for 0.
 int resolve_threads(int requested);
 
+class NearestPointIndex;
+
+// What the searches from one set of queries proved, kept for the next,
+// similar set (the next touch's surface): for each query, its nearest point
+// and the margin by which every other point is farther. A later query within
+// half that margin of the earlier one has the same nearest point (triangle
+// inequality), so its distance needs no search, and is the same number a
+// search would give. It holds for one index only.
+struct NearestMemo {
+  struct Entry {
+    Eigen::Vector3d query, nearest;  // mm
+    double margin = -1;              // mm; negative: nothing proved
+  };
+  std::vector<Entry> entries;  // one per query, in the queries' order
+  const NearestPointIndex* index = nullptr;  // the index the entries hold for
+  std::size_t reused = 0;  // queries of the last call answered without a search
+};
+
 class NearestPointIndex {
  public:
   // Indexes `points` (at least one, all finite; InputError otherwise),
@@ -45,6 +63,11 @@ class NearestPointIndex {
   // Euclidean distance (mm) from each query to its nearest indexed point, in
   // the queries' order; the result does not depend on `threads`.
   std::vector<double> nearest_distances(const Points& queries, int threads = 0) const;
+  // The same distances, bit for bit, reusing and refreshing `memo`; a memo
+  // of another index or another number of queries starts afresh. Each search
+  // also finds the second-nearest point, which costs a little more, so this
+  // pays when the queries move little between calls.
+  std::vector<double> nearest_distances(const Points& queries, NearestMemo& memo, int threads = 0) const;
   double nearest_distance(const Eigen::Vector3d& query) const;
 
  private:

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <future>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <random>
 
 #include "touchcloud/error.hpp"
@@ -163,19 +168,53 @@ double mean_spacing(const std::vector<Eigen::Vector3d>& points) {
 
 }  // namespace
 
+std::size_t bisect_count(std::size_t lo, std::size_t hi, double target,
+                         const std::function<double(std::size_t)>& spacing) {
+  std::map<std::size_t, double> known;
+  std::optional<double> at_lo, at_hi;  // the bracket's spacings, once evaluated
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (!known.count(mid)) {
+      // Whether mid will pass: on the line between the ends' spacings; with
+      // one end known, the crossing is guessed to lie near it.
+      const bool pass = at_lo && at_hi ? *at_lo + (*at_hi - *at_lo) * static_cast<double>(mid - lo) /
+                                                      static_cast<double>(hi - lo) >= target
+                                       : !at_lo;
+      const std::size_t next = pass ? (mid + hi) / 2 : (lo + mid) / 2;
+      const bool guess = next != lo && next != mid && !known.count(next);
+      std::future<double> ahead;
+      if (guess) ahead = std::async(std::launch::async, spacing, next);
+      known[mid] = spacing(mid);
+      if (guess) known[next] = ahead.get();
+    }
+    const double value = known.at(mid);
+    if (value >= target) lo = mid, at_lo = value;
+    else hi = mid, at_hi = value;
+  }
+  return lo;
+}
+
 MarkerLayout make_marker_layout(double radius_mm, double min_spacing_mm, double mean_spacing_mm, std::uint64_t seed) {
   if (!(radius_mm > 0) || !(min_spacing_mm > 0) || !(mean_spacing_mm >= min_spacing_mm) ||
       !(min_spacing_mm < radius_mm))
     throw InputError("marker layout: need radius > min spacing > 0 and mean spacing >= min spacing");
   // More markers, smaller mean spacing: bisect on the lattice's count.
   const double area = 2 * M_PI * radius_mm * radius_mm;
-  std::size_t lo = 2, hi = static_cast<std::size_t>(std::ceil(4.0 * area / (min_spacing_mm * min_spacing_mm))) + 2;
-  while (hi - lo > 1) {
-    const std::size_t mid = (lo + hi) / 2;
-    (mean_spacing(jittered_lattice(radius_mm, min_spacing_mm, mid, seed)) >= mean_spacing_mm ? lo : hi) = mid;
-  }
+  const std::size_t lo = 2, hi = static_cast<std::size_t>(std::ceil(4.0 * area / (min_spacing_mm * min_spacing_mm))) + 2;
+  // Each lattice evaluated is kept: the one found need not be made again.
+  std::mutex mutex;
+  std::map<std::size_t, std::vector<Eigen::Vector3d>> lattices;
+  const std::size_t count = bisect_count(lo, hi, mean_spacing_mm, [&](std::size_t n) {
+    std::vector<Eigen::Vector3d> lattice = jittered_lattice(radius_mm, min_spacing_mm, n, seed);
+    const double mean = mean_spacing(lattice);
+    std::lock_guard<std::mutex> lock(mutex);
+    lattices[n] = std::move(lattice);
+    return mean;
+  });
   MarkerLayout layout;
-  layout.rest_mm = jittered_lattice(radius_mm, min_spacing_mm, lo, seed);
+  const auto found = lattices.find(count);  // absent only if every count tried failed
+  layout.rest_mm = found != lattices.end() ? std::move(found->second)
+                                           : jittered_lattice(radius_mm, min_spacing_mm, count, seed);
   nearest_neighbour_spacing(layout.rest_mm, layout.mean_spacing_mm, layout.min_spacing_mm);
   return layout;
 }

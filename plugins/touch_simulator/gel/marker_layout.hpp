@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -22,6 +23,17 @@ struct MarkerLayout {
 // others); N is the largest count whose mean spacing is still at least
 // `mean_spacing_mm`. Reproducible from `seed`.
 MarkerLayout make_marker_layout(double radius_mm, double min_spacing_mm, double mean_spacing_mm, std::uint64_t seed);
+
+// The count plain bisection on (lo, hi) lands on: one whose `spacing` is at
+// least `target` while the next count's is not, lo and hi standing for a
+// pass and a fail. The spacing need not be monotonic in the count, so the
+// path matters. Each step runs beside a guess at the next step's count (on
+// the side that interpolating the bracket's spacings points to), so
+// `spacing` is called from two threads at once; when the guess is right, the
+// next step costs no time. The counts tried include all that plain bisection
+// tries.
+std::size_t bisect_count(std::size_t lo, std::size_t hi, double target,
+                         const std::function<double(std::size_t)>& spacing);
 
 // Mean and minimum nearest-neighbour distance of `points` (at least two).
 void nearest_neighbour_spacing(const std::vector<Eigen::Vector3d>& points, double& mean_mm, double& min_mm);

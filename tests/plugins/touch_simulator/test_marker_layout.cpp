@@ -1,6 +1,10 @@
-// The marker layout: on the gel, spaced as asked, even, reproducible.
+// The marker layout: on the gel, spaced as asked, even, reproducible; the
+// count search lands where plain bisection does.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <mutex>
+#include <cmath>
 #include <random>
 
 #include "gel/marker_layout.hpp"
@@ -68,4 +72,44 @@ TEST(MarkerLayout, IsFixedBySeedAndSpacingIsConfigurable) {
   EXPECT_GE(sparse.mean_spacing_mm, 2.4);
   EXPECT_LT(sparse.mean_spacing_mm, 2.45);
   EXPECT_LT(sparse.rest_mm.size(), a.rest_mm.size());
+}
+
+TEST(MarkerLayout, CountSearchLandsWherePlainBisectionDoes) {
+  // Spacings that fall with the count but wiggle, so several counts cross
+  // the target and the bisection's path decides which one it finds: the
+  // search with guesses must try every count plain bisection tries and
+  // return the same one.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t path_steps = 0, wrong_guesses = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double wiggle = 0.3 * unit(rng), period = 5 + 200 * unit(rng), phase = 6.3 * unit(rng);
+    const std::size_t hi = 50 + static_cast<std::size_t>(20000 * unit(rng));
+    const auto spacing = [=](std::size_t n) {
+      return 3.0 - 2.0 * static_cast<double>(n) / static_cast<double>(hi) + wiggle * std::sin(n / period + phase);
+    };
+    std::size_t lo = 2, top = hi;
+    std::vector<std::size_t> plain_path;
+    while (top - lo > 1) {
+      const std::size_t mid = (lo + top) / 2;
+      plain_path.push_back(mid);
+      (spacing(mid) >= 2.0 ? lo : top) = mid;
+    }
+    std::mutex mutex;
+    std::vector<std::size_t> tried;
+    const std::size_t found = bisect_count(2, hi, 2.0, [&](std::size_t n) {
+      std::lock_guard<std::mutex> lock(mutex);
+      tried.push_back(n);
+      return spacing(n);
+    });
+    EXPECT_EQ(found, lo) << "trial " << trial;
+    for (std::size_t mid : plain_path)
+      EXPECT_NE(std::find(tried.begin(), tried.end(), mid), tried.end()) << "trial " << trial << ", count " << mid;
+    // Every count is tried once; counts off the path are wrong guesses.
+    std::sort(tried.begin(), tried.end());
+    EXPECT_EQ(std::adjacent_find(tried.begin(), tried.end()), tried.end()) << "trial " << trial;
+    path_steps += plain_path.size();
+    wrong_guesses += tried.size() - plain_path.size();
+  }
+  EXPECT_LT(wrong_guesses, path_steps / 3) << "the guesses are mostly right";
 }

@@ -17,7 +17,7 @@ void press_gel(const std::vector<Eigen::Vector3d>& rest_sensor_mm, const Eigen::
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p = base_from_sensor * rest_sensor_mm[i];
     state.markers_base_mm[i] = p;
-    const double overlap = object.height_mm(p.head<2>()) - p.z();
+    const double overlap = object.overlap_mm(p.head<2>(), p.z());
     if (overlap > 0) {
       ++state.markers_overlapping;
       state.max_overlap_mm = std::max(state.max_overlap_mm, overlap);

@@ -11,6 +11,8 @@ namespace {
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 // Points on a shared edge belong to both triangles: rounding must not open gaps.
 constexpr double kInsideTolerance = 1e-12;
+// Above a cell's highest corner by this much, a point is above every height there.
+constexpr double kBoundSlackMm = 1e-6;
 }  // namespace
 
 MeshSurface::MeshSurface(const scoring::TriangleMesh& mesh) {
@@ -74,14 +76,17 @@ void MeshSurface::cell_of(const Eigen::Vector2d& xy, int& ix, int& iy) const {
   iy = std::clamp(static_cast<int>(std::floor((xy.y() - origin_.y()) / cell_mm_)), 0, ny_ - 1);
 }
 
-double MeshSurface::height_mm(const Eigen::Vector2d& xy) const {
+int MeshSurface::cell_at(const Eigen::Vector2d& xy) const {
   const Eigen::Vector2d rel = xy - origin_;
   const double fx = rel.x() / cell_mm_, fy = rel.y() / cell_mm_;
   // Outside the grid (with a rounding margin) there is no triangle.
-  if (!(fx >= -1e-9 && fy >= -1e-9 && fx <= nx_ + 1e-9 && fy <= ny_ + 1e-9)) return 0.0;
+  if (!(fx >= -1e-9 && fy >= -1e-9 && fx <= nx_ + 1e-9 && fy <= ny_ + 1e-9)) return -1;
   int ix, iy;
   cell_of(xy, ix, iy);
-  const int cell = cell_index(ix, iy);
+  return cell_index(ix, iy);
+}
+
+double MeshSurface::height_in_cell(const Eigen::Vector2d& xy, int cell) const {
   double top = 0.0;  // the table
   for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
     const Triangle& t = triangles_[cell_triangles_[k]];
@@ -92,6 +97,22 @@ double MeshSurface::height_mm(const Eigen::Vector2d& xy) const {
     top = std::max(top, t.za + u * t.zab + v * t.zac);
   }
   return top;
+}
+
+double MeshSurface::height_mm(const Eigen::Vector2d& xy) const {
+  const int cell = cell_at(xy);
+  return cell < 0 ? 0.0 : height_in_cell(xy, cell);
+}
+
+double MeshSurface::overlap_mm(const Eigen::Vector2d& xy, double z) const {
+  const int cell = cell_at(xy);
+  if (cell < 0) return -z;
+  // A height is a weighted mean of a triangle's corners, with weights down
+  // to -kInsideTolerance, so it exceeds the highest corner by at most ~1e-12
+  // of the triangle's rise; the slack covers that and rounding.
+  const double bound = cell_max_z_[cell] + kBoundSlackMm;
+  if (z > bound) return bound - z;
+  return height_in_cell(xy, cell) - z;
 }
 
 double MeshSurface::max_height_mm(const Eigen::Vector2d& centre, double radius) const {

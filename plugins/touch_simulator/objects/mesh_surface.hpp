@@ -19,6 +19,9 @@ class MeshSurface final : public ObjectSurface {
 
   double height_mm(const Eigen::Vector2d& xy_mm) const override;
   double max_height_mm(const Eigen::Vector2d& centre_mm, double radius_mm) const override;
+  // Above its cell's highest vertex, a point is clear of every triangle
+  // there: no triangle is read.
+  double overlap_mm(const Eigen::Vector2d& xy_mm, double z_mm) const override;
   std::size_t triangles() const { return triangles_.size(); }
 
  private:
@@ -29,6 +32,9 @@ class MeshSurface final : public ObjectSurface {
   };
   int cell_index(int ix, int iy) const { return iy * nx_ + ix; }
   void cell_of(const Eigen::Vector2d& xy, int& ix, int& iy) const;
+  // The cell holding xy; -1 outside the grid, where there is no triangle.
+  int cell_at(const Eigen::Vector2d& xy) const;
+  double height_in_cell(const Eigen::Vector2d& xy, int cell) const;
 
   std::vector<Triangle> triangles_;
   Eigen::Vector2d origin_;

@@ -20,6 +20,11 @@ class ObjectSurface {
   // above for meshes (a cell-wise bound), sampled for analytic surfaces (see
   // there); used to start touches clear of the object.
   virtual double max_height_mm(const Eigen::Vector2d& centre_mm, double radius_mm) const = 0;
+  // How far a point at (x, y, z) lies below the surface: height_mm(xy) - z
+  // whenever that is positive, otherwise some value <= 0. The gel's contact
+  // test, for every marker in every frame; a surface may answer it without
+  // the height where the point is clearly above.
+  virtual double overlap_mm(const Eigen::Vector2d& xy_mm, double z_mm) const { return height_mm(xy_mm) - z_mm; }
 };
 
 // Builds the scene's object. A mesh that cannot be read, holds no triangles

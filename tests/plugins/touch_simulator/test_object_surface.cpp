@@ -49,6 +49,39 @@ TEST(MeshSurface, TakesTheHighestLayerAndNeverGoesBelowTheTable) {
   EXPECT_EQ(MeshSurface(tilted_square(-50.0)).height_mm({2, 7}), 0.0);  // sunk below the table
 }
 
+TEST(MeshSurface, OverlapIsTheHeightAboveAPointWheneverItIsPositive) {
+  // A rough 40 x 40 height field: points around it and just above its cells'
+  // highest corners, where the overlap is answered without the height.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  scoring::TriangleMesh m;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) m.vertices.emplace_back(i * 0.7, j * 0.7, 5 + 3 * unit(rng));
+  for (int j = 0; j + 1 < 40; ++j)
+    for (int i = 0; i + 1 < 40; ++i) {
+      const auto a = static_cast<std::uint32_t>(j * 40 + i);
+      m.triangles.push_back({a, a + 1, a + 41});
+      m.triangles.push_back({a, a + 41, a + 40});
+    }
+  const MeshSurface surface(m);
+  int touching = 0, answered_without_height = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Eigen::Vector2d xy(-2 + 31 * unit(rng), -2 + 31 * unit(rng));
+    const double height = surface.height_mm(xy);
+    const double z = k % 2 ? height + 2 * (unit(rng) - 0.5) : 8.0 + 1e-7 * (unit(rng) - 0.5);
+    const double overlap = surface.overlap_mm(xy, z);
+    if (height - z > 0) {
+      ++touching;
+      ASSERT_EQ(overlap, height - z) << k;
+    } else {
+      ASSERT_LE(overlap, 0.0) << k;
+      answered_without_height += overlap != height - z;
+    }
+  }
+  EXPECT_GT(touching, 4000);
+  EXPECT_GT(answered_without_height, 2000);
+}
+
 TEST(MeshSurface, WallsSeenEdgeOnAreNotSurfaces) {
   scoring::TriangleMesh wall;
   wall.vertices = {{0, 0, 0}, {10, 0, 0}, {10, 0, 5}};

@@ -34,6 +34,12 @@ class SurfaceSampler final : public Stage {
   void on_process(StageIO& io, RunContext&) override {
     const auto& surface = io.input<SurfaceModelPtr>("surface");
     if (!surface) throw RunError("no surface model");
+    // The same model as last time (a touch that added no point): the same
+    // points (surface_model.hpp: a model does not change once output).
+    if (surface == last_surface_) {
+      io.output("cloud", last_cloud_);
+      return;
+    }
     const int nx = static_cast<int>(resolution_[0]), ny = static_cast<int>(resolution_[1]);
     const Eigen::VectorXd xs = Eigen::VectorXd::LinSpaced(nx, area_.x_mm[0], area_.x_mm[1]);
     const Eigen::VectorXd ys = Eigen::VectorXd::LinSpaced(ny, area_.y_mm[0], area_.y_mm[1]);
@@ -47,8 +53,12 @@ class SurfaceSampler final : public Stage {
           throw RunError("the surface mean is not finite at (" + std::to_string(xs[i]) + ", " + std::to_string(ys[j]) + ") mm");
         cloud->push_back(pcl::PointXYZ(static_cast<float>(xs[i]), static_cast<float>(ys[j]), static_cast<float>(z(i, j))));
       }
-    io.output("cloud", CloudConstPtr(cloud));
+    last_surface_ = surface;
+    last_cloud_ = cloud;
+    io.output("cloud", last_cloud_);
   }
+  SurfaceModelPtr last_surface_;
+  CloudConstPtr last_cloud_;
 };
 
 }  // namespace touchcloud

@@ -1,10 +1,14 @@
 // gp_surface as a stage: touches of a known surface go in; the fitted mean
 // follows the surface where it was touched, the factor is extended between
-// selections, and the path each touch took is reported.
+// selections, and the path each touch took is reported; a touch that adds
+// nothing gives the same model again.
 #include <cmath>
 
 #include "cloud_files.hpp"
 #include "pipeline_fixture.hpp"
+#include "stage_harness.hpp"
+#include "touchcloud/types/point_cloud.hpp"
+#include "touchcloud/types/surface_model.hpp"
 
 using namespace touchcloud;
 
@@ -80,4 +84,24 @@ TEST_F(GpSurfaceStage, SparseWithFewInducingPointsStillFollowsTheSurface) {
   double worst = 0;
   for (const auto& p : s.points) worst = std::max(worst, std::abs(p.z - (10 + 3 * std::sin(p.x / 15.0) * std::cos(p.y / 20.0))));
   EXPECT_LT(worst, 0.2);  // 60 points over a 14 mm square of a 3 mm relief
+}
+
+TEST(GpSurfaceModelOut, ATouchThatAddsNothingGivesTheSameModel) {
+  touchcloud::test::StageHarness stage("gp_surface", {});
+  stage.configure();
+  const auto patch = [](double x0_mm) {
+    auto cloud = std::make_shared<PointCloud>();
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) cloud->push_back(pcl::PointXYZ(x0_mm + i, j, 10 + 0.1f * i * j));
+    return CloudConstPtr(cloud);
+  };
+  const auto fit = [&](CloudConstPtr cloud) { return stage.process_one<SurfaceModelPtr>({{"cloud", cloud}}, "surface"); };
+  const SurfaceModelPtr first = fit(patch(0));
+  const SurfaceModelPtr again = fit(CloudConstPtr(std::make_shared<PointCloud>()));
+  EXPECT_EQ(again, first);
+  EXPECT_EQ(stage.metric("update_path"), 0);
+  const SurfaceModelPtr grown = fit(patch(8));
+  EXPECT_NE(grown, first);
+  EXPECT_EQ(grown->training_size(), 72u);
+  EXPECT_EQ(first->training_size(), 36u);  // the earlier model is as it was
 }

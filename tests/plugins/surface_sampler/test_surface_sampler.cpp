@@ -1,6 +1,10 @@
-// The sampled surface lies on the model's mean, on the requested lattice.
+// The sampled surface lies on the model's mean, on the requested lattice;
+// the same model again gives the same points without evaluating it again.
 #include "cloud_files.hpp"
 #include "pipeline_fixture.hpp"
+#include "stage_harness.hpp"
+#include "touchcloud/types/point_cloud.hpp"
+#include "touchcloud/types/surface_model.hpp"
 
 using namespace touchcloud;
 
@@ -24,4 +28,43 @@ TEST_F(SurfaceSampler, LatticeOfTheMeanOverTheWorkspace) {
   EXPECT_FLOAT_EQ(c[1].x, -9);
   EXPECT_FLOAT_EQ(c[104].y, 40);
   for (const auto& q : c.points) EXPECT_NEAR(q.z, 0.5 * q.x - 0.25 * q.y + 3, 1e-5);
+}
+
+namespace {
+// z = height everywhere; counts its lattice evaluations.
+class CountingPlane final : public SurfaceModel {
+ public:
+  explicit CountingPlane(double height_mm) : height_mm_(height_mm) {}
+  std::size_t training_size() const override { return 0; }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override {
+    ++evaluations;
+    return Eigen::VectorXd::Constant(xy.rows(), height_mm_);
+  }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return Eigen::VectorXd::Zero(xy.rows()); }
+  std::map<std::string, double> hyperparameters() const override { return {}; }
+  mutable int evaluations = 0;
+
+ private:
+  double height_mm_;
+};
+}  // namespace
+
+TEST(SurfaceSamplerStage, TheSameModelAgainGivesTheSamePointsWithoutEvaluating) {
+  touchcloud::test::StageHarness stage(
+      "surface_sampler", {{"workspace_x_mm", std::vector<double>{0, 10}}, {"workspace_y_mm", std::vector<double>{0, 10}},
+                          {"resolution", std::vector<double>{11, 11}}});
+  stage.configure();
+  const auto first = std::make_shared<CountingPlane>(2.0), second = std::make_shared<CountingPlane>(5.0);
+  const auto sample = [&](const std::shared_ptr<CountingPlane>& model) {
+    return stage.process_one<CloudConstPtr>({{"surface", SurfaceModelPtr(model)}}, "cloud");
+  };
+  const CloudConstPtr a = sample(first);
+  ASSERT_EQ(a->size(), 121u);
+  EXPECT_FLOAT_EQ(a->points[60].z, 2.0f);
+  EXPECT_EQ(sample(first), a);
+  EXPECT_EQ(first->evaluations, 1);
+  const CloudConstPtr b = sample(second);
+  EXPECT_NE(b, a);
+  EXPECT_FLOAT_EQ(b->points[60].z, 5.0f);
+  EXPECT_EQ(second->evaluations, 1);
 }

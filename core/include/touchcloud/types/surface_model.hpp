@@ -32,6 +32,8 @@ class SurfaceModel {
   // Named hyperparameters with units in the name ("lengthscale_mm").
   virtual std::map<std::string, double> hyperparameters() const = 0;
 };
+// A model does not change once a stage has output it, so a stage that gets
+// the same pointer again may reuse what it computed from it.
 using SurfaceModelPtr = std::shared_ptr<const SurfaceModel>;
 
 }  // namespace touchcloud

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <mutex>
 #include <numbers>
 #include <sstream>
@@ -243,7 +244,6 @@ Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen:
   }
   // exp(-(dx^2 + dy^2) / 2l^2) = exp(-dx^2 / 2l^2) exp(-dy^2 / 2l^2).
   const double l = kernel_.hyperparameters().lengthscale_mm, c = -0.5 / (l * l);
-  const Eigen::VectorXd& alpha = weights();
   // One axis's factor for a centred training coordinate down a column:
   // exp(c (g - centre - coordinate)^2).
   const auto axis_factor = [c](auto column, const Eigen::VectorXd& grid_mm, double centre_mm, double coordinate_mm) {
@@ -251,11 +251,17 @@ Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen:
     exp_in_place(column.array());
   };
   Eigen::MatrixXd ex(nx, n_), ey(ny, n_);
+  // The y factors on a second thread while this one solves for the weights
+  // (a pass over the whole factor) and makes the x factors.
+  std::future<void> y_factors = std::async(std::launch::async, [&] {
+    for (Eigen::Index p = 0; p < n_; ++p) axis_factor(ey.col(p), ys_mm, centring_.y_mm, y_[p]);
+  });
+  const Eigen::VectorXd& alpha = weights();
   for (Eigen::Index p = 0; p < n_; ++p) {
     axis_factor(ex.col(p), xs_mm, centring_.x_mm, x_[p]);
     ex.col(p) *= alpha[p];
-    axis_factor(ey.col(p), ys_mm, centring_.y_mm, y_[p]);
   }
+  y_factors.get();
   Eigen::MatrixXd out = kernel_.hyperparameters().signal_variance_mm2 * product_transposed(ex, ey);
   out.array() += centring_.z_mm;
   return out;

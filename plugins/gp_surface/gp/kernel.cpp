@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "gp/triangle_columns.hpp"
 #include "gp/vector_exp.hpp"
 
 namespace touchcloud::gp {
@@ -69,13 +70,15 @@ void Kernel::covariance_and_d_log_lengthscale(Eigen::Map<Eigen::ArrayXd> v, Eige
 void Kernel::fill_lower(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double diagonal_add,
                         Eigen::Ref<Eigen::MatrixXd> out) const {
   const Eigen::Index n = x.size();
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const Eigen::Index len = n - j;
-    Eigen::Map<Eigen::ArrayXd> col(out.col(j).data() + j, len);
-    col = (x.segment(j, len).array() - x[j]).square() + (y.segment(j, len).array() - y[j]).square();
-    covariance_in_place(col);
-    col[0] += diagonal_add;
-  }
+  for_triangle_columns(n, [&](Eigen::Index first, Eigen::Index last) {
+    for (Eigen::Index j = first; j < last; ++j) {
+      const Eigen::Index len = n - j;
+      Eigen::Map<Eigen::ArrayXd> col(out.col(j).data() + j, len);
+      col = (x.segment(j, len).array() - x[j]).square() + (y.segment(j, len).array() - y[j]).square();
+      covariance_in_place(col);
+      col[0] += diagonal_add;
+    }
+  });
 }
 
 void Kernel::fill_cross(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::Ref<const Eigen::VectorXd>& qx,

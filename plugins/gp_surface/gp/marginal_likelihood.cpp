@@ -10,6 +10,7 @@
 #include "gp/factor_algebra.hpp"
 #include "gp/kernel.hpp"
 #include "gp/training_data.hpp"
+#include "gp/triangle_columns.hpp"
 
 namespace touchcloud::gp {
 
@@ -58,20 +59,29 @@ MarginalLikelihood::GradientTerms MarginalLikelihood::gradient_terms(const Hyper
   cholesky_inverse_in_place(work_);
   const Kernel kernel(kind_, h);
   const Eigen::Index n = x_.size();
+  // Each column's four sums, on two threads; added up in column order
+  // below, so the totals do not depend on the split.
+  Eigen::Array4Xd per_column(4, n);
+  for_triangle_columns(n, [&](Eigen::Index first, Eigen::Index last) {
+    Eigen::ArrayXd k_col(n), dk_col(n), a_col(n);
+    for (Eigen::Index j = first; j < last; ++j) {
+      const Eigen::Index len = n - j;
+      Eigen::Map<Eigen::ArrayXd> k(k_col.data(), len), dk(dk_col.data(), len), a(a_col.data(), len);
+      k = (x_.segment(j, len).array() - x_[j]).square() + (y_.segment(j, len).array() - y_[j]).square();
+      kernel.covariance_and_d_log_lengthscale(k, dk);
+      a = alpha_.segment(j, len).array() * alpha_[j];
+      const auto inverse = work_.col(j).segment(j, len).array();
+      // Symmetric sums over the lower triangle: twice the column, less the diagonal once.
+      per_column.col(j) << 2.0 * (a * k).sum() - a[0] * k[0], 2.0 * (inverse * k).sum() - inverse[0] * k[0],
+          2.0 * (a * dk).sum() - a[0] * dk[0], 2.0 * (inverse * dk).sum() - inverse[0] * dk[0];
+    }
+  });
   GradientTerms t;
-  Eigen::ArrayXd k_col(n), dk_col(n), a_col(n);
   for (Eigen::Index j = 0; j < n; ++j) {
-    const Eigen::Index len = n - j;
-    Eigen::Map<Eigen::ArrayXd> k(k_col.data(), len), dk(dk_col.data(), len), a(a_col.data(), len);
-    k = (x_.segment(j, len).array() - x_[j]).square() + (y_.segment(j, len).array() - y_[j]).square();
-    kernel.covariance_and_d_log_lengthscale(k, dk);
-    a = alpha_.segment(j, len).array() * alpha_[j];
-    const auto inverse = work_.col(j).segment(j, len).array();
-    // Symmetric sums over the lower triangle: twice the column, less the diagonal once.
-    t.quad_k += 2.0 * (a * k).sum() - a[0] * k[0];
-    t.trace_k += 2.0 * (inverse * k).sum() - inverse[0] * k[0];
-    t.quad_dl += 2.0 * (a * dk).sum() - a[0] * dk[0];
-    t.trace_dl += 2.0 * (inverse * dk).sum() - inverse[0] * dk[0];
+    t.quad_k += per_column(0, j);
+    t.trace_k += per_column(1, j);
+    t.quad_dl += per_column(2, j);
+    t.trace_dl += per_column(3, j);
   }
   t.quad_i = alpha_.squaredNorm();
   t.trace_i = work_.diagonal().sum();

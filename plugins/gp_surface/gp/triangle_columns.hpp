@@ -1,0 +1,32 @@
+// Work over the columns of an n x n lower triangle, on two threads: column j
+// holds n - j entries, so the split falls where each side gets half of them.
+// The columns are independent; a caller that sums over them does so in
+// column order afterwards, so results do not depend on the split.
+#pragma once
+
+#include <cmath>
+#include <future>
+
+#include <Eigen/Core>
+
+namespace touchcloud::gp {
+
+// Below this many columns a second thread costs more than it saves.
+inline constexpr Eigen::Index kTwoThreadColumns = 256;
+
+// Calls body(first, last) on column ranges covering [0, n): [0, split) on a
+// second thread and [split, n) on this one, or [0, n) here for small n.
+template <class Body>
+void for_triangle_columns(Eigen::Index n, Body body) {
+  if (n < kTwoThreadColumns) {
+    body(Eigen::Index{0}, n);
+    return;
+  }
+  // Columns [0, s) hold n s - s^2 / 2 entries: half of n^2 / 2 at s = n (1 - 1/sqrt 2).
+  const auto split = static_cast<Eigen::Index>(static_cast<double>(n) * (1.0 - std::sqrt(0.5)));
+  std::future<void> first = std::async(std::launch::async, [&] { body(Eigen::Index{0}, split); });
+  body(split, n);
+  first.get();
+}
+
+}  // namespace touchcloud::gp

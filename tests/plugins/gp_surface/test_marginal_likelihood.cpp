@@ -31,7 +31,9 @@ double dense_lml(KernelKind kind, const Hyperparameters& h, const Eigen::MatrixX
 }
 
 TEST(GpMarginalLikelihood, MatchesDenseFormula) {
-  const Eigen::MatrixX2d xy = random_xy(70, 21);
+  // 300 points: the kernel fill on two threads (gp/triangle_columns.hpp).
+  for (int n : {70, 300}) {
+  const Eigen::MatrixX2d xy = random_xy(n, 21);
   const Eigen::VectorXd z = heights(xy, 0.1);
   for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
     MarginalLikelihood lml(kind, xy, z);
@@ -41,12 +43,16 @@ TEST(GpMarginalLikelihood, MatchesDenseFormula) {
       EXPECT_NEAR(lml.evaluate(h, true).lml, expected, 1e-9 * std::abs(expected)) << to_string(kind);
     }
   }
+  }
 }
 
 // Case 11: central differences in log space, both kernels, several settings
 // (well and poorly determined, noise-dominated and nearly noise-free).
 TEST(GpMarginalLikelihood, AnalyticGradientMatchesFiniteDifferences) {
-  const Eigen::MatrixX2d xy = random_xy(120, 22);  // > 2 x 64: the recursive inverse path
+  // 120 points: the recursive inverse (> 2 x 64); 400: the BLAS inverse and
+  // the column sums on two threads (gp/triangle_columns.hpp).
+  for (int n : {120, 400}) {
+  const Eigen::MatrixX2d xy = random_xy(n, 22);
   const Eigen::VectorXd z = heights(xy, 0.1);
   const std::vector<Hyperparameters> settings = {
       {4.0, 9.0, 0.01}, {0.3, 2.0, 0.5}, {10.0, 40.0, 1e-3}, {1.0, 6.0, 1e-5}};
@@ -64,9 +70,10 @@ TEST(GpMarginalLikelihood, AnalyticGradientMatchesFiniteDifferences) {
         down[i] -= step;
         const double fd = (lml.evaluate(from_log(up), false).lml - lml.evaluate(from_log(down), false).lml) / (2 * step);
         EXPECT_NEAR(at.gradient[i], fd, 1e-6 * std::max(1.0, std::abs(fd)))
-            << to_string(kind) << " parameter " << i << " at l = " << h.lengthscale_mm;
+            << to_string(kind) << " parameter " << i << " at l = " << h.lengthscale_mm << ", n = " << n;
       }
     }
+  }
   }
 }
 

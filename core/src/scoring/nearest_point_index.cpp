@@ -168,6 +168,11 @@ void sort_range_by_locality(Eigen::Vector3d* first, std::size_t count) {
 void sort_by_locality(Points& points) { sort_range_by_locality(points.data(), points.size()); }
 
 struct NearestPointIndex::Impl {
+  // Unique in the process (for NearestMemo); 0 is no index.
+  const std::uint64_t id = [] {
+    static std::atomic<std::uint64_t> last{0};
+    return ++last;
+  }();
   Points points;  // grouped by cluster
   std::vector<Node> nodes;  // nodes[0] is the root
 
@@ -398,9 +403,9 @@ std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, 
 
 std::vector<double> NearestPointIndex::nearest_distances(const Points& queries, NearestMemo& memo, int threads) const {
   check_queries(queries);
-  if (memo.index != this || memo.entries.size() != queries.size()) {
+  if (memo.index_id != impl_->id || memo.entries.size() != queries.size()) {
     memo.entries.assign(queries.size(), NearestMemo::Entry{});
-    memo.index = this;
+    memo.index_id = impl_->id;
   }
   std::vector<double> distances(queries.size());
   std::atomic<std::size_t> reused{0};

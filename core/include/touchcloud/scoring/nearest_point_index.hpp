@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -27,8 +28,6 @@ void sort_by_locality(Points& points);
 // The number of threads to use: `requested`, or every hardware thread for 0.
 int resolve_threads(int requested);
 
-class NearestPointIndex;
-
 // What the searches from one set of queries proved, kept for the next,
 // similar set (the next touch's surface): for each query, its nearest point
 // and the margin by which every other point is farther. A later query within
@@ -41,7 +40,9 @@ struct NearestMemo {
     double margin = -1;              // mm; negative: nothing proved
   };
   std::vector<Entry> entries;  // one per query, in the queries' order
-  const NearestPointIndex* index = nullptr;  // the index the entries hold for
+  // The index the entries hold for: an id no other index in the process
+  // shares (an address could be reused by an index built later).
+  std::uint64_t index_id = 0;
   std::size_t reused = 0;  // queries of the last call answered without a search
 };
 

@@ -40,8 +40,7 @@ class GpSurface final : public Stage {
   Eigen::VectorXd z_;
   std::shared_ptr<const gp::ExactGp> gp_;  // method exact
   SurfaceModelPtr sparse_;                  // method sparse: the last fit
-  SurfaceModelPtr exact_surface_;           // method exact: the last output, of exact_surface_gp_
-  std::shared_ptr<const gp::ExactGp> exact_surface_gp_;
+  std::shared_ptr<const GpSurfaceModel> exact_surface_;  // method exact: the last output
   Eigen::Index selected_at_ = 0;  // training size at the last selection (0: none yet)
   gp::Hyperparameters last_;
   Eigen::Matrix2d last_curvature_ = Eigen::Matrix2d::Zero();  // its hessian_per_point, for the next warm start
@@ -171,8 +170,7 @@ class GpSurface final : public Stage {
       ctx.metric("jitter_mm2", gp_->factorisation().jitter_mm2, "mm^2");
       // An unchanged fit goes out as the same model, which later stages may
       // recognise and not evaluate again.
-      if (!exact_surface_ || exact_surface_gp_ != gp_) exact_surface_ = std::make_shared<GpSurfaceModel>(gp_);
-      exact_surface_gp_ = gp_;
+      if (!exact_surface_ || exact_surface_->gp() != gp_) exact_surface_ = std::make_shared<GpSurfaceModel>(gp_);
       surface = exact_surface_;
     }
     ctx.metric("training_points", static_cast<double>(n), "points");

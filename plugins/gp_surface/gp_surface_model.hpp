@@ -19,6 +19,7 @@ class GpSurfaceModel final : public SurfaceModel {
   }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
   std::map<std::string, double> hyperparameters() const override;
+  const std::shared_ptr<const gp::ExactGp>& gp() const { return gp_; }
 
  private:
   std::shared_ptr<const gp::ExactGp> gp_;

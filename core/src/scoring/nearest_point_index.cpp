@@ -20,7 +20,7 @@
 // pruning is therefore conservative and the result exact: the distances
 // match a brute-force scan to the last bit (tests/core/scoring).
 //
-// Two more things make it faster without changing any result:
+// Three more things make it faster without changing any result:
 // - Warm starts: queries usually come in order along a surface (a grid, a
 //   scan, or the locality order of cloud_metrics.cpp), so the previous
 //   query's nearest point is close to the next one's, and its distance
@@ -28,6 +28,9 @@
 //   surface from its nearest point on the previous touch's was no faster.)
 // - Threads take chunks of queries as they finish the last one: the cost of
 //   a query varies by orders of magnitude across a surface.
+// - A NearestMemo (for a sequence of slowly moving query sets, such as the
+//   surface after each touch) answers a query that moved less than half the
+//   gap between its nearest and second-nearest points without a search.
 #include "touchcloud/scoring/nearest_point_index.hpp"
 
 #include <algorithm>
@@ -233,7 +236,9 @@ struct NearestPointIndex::Impl {
         if (second < best_squared) std::swap(second, best_squared), best = other;
       }
     }
-    double bound = (kSecond ? second : best_squared) * (1 + kSlack);
+    // The distance the bound follows: the nearest, or the second nearest.
+    const auto limit = [&] { return kSecond ? second : best_squared; };
+    double bound = limit() * (1 + kSlack);
     // Depth-first, nearest child first. The tree is at most 16 levels deep
     // (quarters of < 2^31 clusters), each level leaving at most 3 entries.
     struct Entry {
@@ -249,22 +254,17 @@ struct NearestPointIndex::Impl {
       if (e.squared > bound) continue;
       if (e.child & kLeaf) {
         const std::uint32_t first = e.child & ~kLeaf;
-        if constexpr (kSecond) {
-          const double before = second;
-          for (std::uint32_t j = first; j < first + e.count; ++j) {
-            const double d2 = (points[j] - q).squaredNorm();
-            if (d2 < best_squared) second = best_squared, best_squared = d2, best = j;
-            else if (d2 < second && j != best) second = d2;
+        const double before = limit();
+        for (std::uint32_t j = first; j < first + e.count; ++j) {
+          const double d2 = (points[j] - q).squaredNorm();
+          if (d2 < best_squared) {
+            if constexpr (kSecond) second = best_squared;
+            best_squared = d2, best = j;
+          } else if constexpr (kSecond) {
+            if (d2 < second && j != best) second = d2;
           }
-          if (second < before) bound = second * (1 + kSlack);
-        } else {
-          const double before = best_squared;
-          for (std::uint32_t j = first; j < first + e.count; ++j) {
-            const double d2 = (points[j] - q).squaredNorm();
-            if (d2 < best_squared) best_squared = d2, best = j;
-          }
-          if (best_squared < before) bound = best_squared * (1 + kSlack);
         }
+        if (limit() < before) bound = limit() * (1 + kSlack);
         continue;
       }
       const Node& n = nodes[e.child];

@@ -218,12 +218,9 @@ void ExactGp::for_each_cross_block(const Eigen::MatrixX2d& xy_mm, const CrossBlo
 
 Eigen::VectorXd ExactGp::mean(const Eigen::MatrixX2d& xy_mm) const {
   check_finite(xy_mm, "query point");
-  const Eigen::Index m = xy_mm.rows();
-  Eigen::VectorXd out = Eigen::VectorXd::Constant(m, centring_.z_mm);
-  for_each_cross_block(xy_mm, [&](Eigen::Index b0, CrossBlock kb) {
-    out.segment(b0, kb.cols()).noalias() += kb.transpose() * weights();
-  });
-  return out;
+  if (n_ == 0) return Eigen::VectorXd::Constant(xy_mm.rows(), centring_.z_mm);
+  const CentredXy q = centre(xy_mm, centring_);
+  return kernel_.weighted_sums(x_, y_, weights(), q.x, q.y).array() + centring_.z_mm;
 }
 
 Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen::VectorXd& ys_mm) const {

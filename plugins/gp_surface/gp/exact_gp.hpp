@@ -1,8 +1,9 @@
 // Exact Gaussian-process surface z = f(x, y) in mm, at fixed hyperparameters.
 // Keeps the Cholesky factor L of A = K + (s^2 + c) I (c: jitter, if needed),
 // v = L^-1 (z - z0) and, once the mean is asked for, alpha = A^-1 (z - z0).
-// The mean runs through alpha in query blocks (memory n x block); the
-// variance through L^-1 k_x, only where asked. New touches extend L by a
+// The mean runs through alpha one query at a time (Kernel::weighted_sums);
+// the variance through L^-1 k_x in query blocks (memory n x block), only
+// where asked. New touches extend L by a
 // bordered Cholesky update instead of a refactorisation.
 //
 // Copies are cheap snapshots: a bordered update only appends rows to L, so a
@@ -31,7 +32,8 @@ namespace touchcloud::gp {
 
 struct ExactGpOptions {
   JitterSchedule jitter;
-  // Cross-covariance blocks hold at most this many doubles (n x block queries).
+  // The variance's cross-covariance blocks hold at most this many doubles
+  // (n x block queries).
   Eigen::Index query_block_doubles = Eigen::Index{1} << 21;  // 16 MB
   // Room left for later touches when the factor is (re)allocated, as a
   // fraction of the training size; growing copies the whole factor.

@@ -1,14 +1,19 @@
 #include "gp/kernel.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "gp/triangle_columns.hpp"
+#include "gp/two_threads.hpp"
 #include "gp/vector_exp.hpp"
 
 namespace touchcloud::gp {
 
 namespace {
 constexpr double kSqrt5 = 2.23606797749978969640917366873128;
+// Kernel values below which weighted_sums stays on one thread.
+constexpr Eigen::Index kTwoThreadEntries = Eigen::Index{1} << 16;
 }
 
 Kernel::Kernel(KernelKind kind, const Hyperparameters& h) : kind_(kind), h_(h) {
@@ -42,10 +47,20 @@ void Kernel::covariance_in_place(Eigen::Map<Eigen::ArrayXd> v) const {
     exp_in_place(v);
     v *= s2;
   } else {
-    v = (v * (5.0 * inv_lengthscale2_)).sqrt();  // s
-    Eigen::ArrayXd e = -v;
-    exp_in_place(e);
-    v = s2 * (1.0 + v + v.square() * (1.0 / 3.0)) * e;
+    // In chunks, with e^-s on the stack: no allocation per call. The chunk is
+    // a multiple of exp_in_place's width, so every value takes the same
+    // exponential as in one pass.
+    constexpr Eigen::Index kChunk = 256;
+    std::array<double, kChunk> buffer;
+    for (Eigen::Index first = 0; first < v.size(); first += kChunk) {
+      const Eigen::Index len = std::min(kChunk, v.size() - first);
+      auto s = v.segment(first, len);
+      Eigen::Map<Eigen::ArrayXd> e(buffer.data(), len);
+      s = (s * (5.0 * inv_lengthscale2_)).sqrt();
+      e = -s;
+      exp_in_place(e);
+      s = s2 * (1.0 + s + s.square() * (1.0 / 3.0)) * e;
+    }
   }
 }
 
@@ -79,6 +94,27 @@ void Kernel::fill_lower(const Eigen::VectorXd& x, const Eigen::VectorXd& y, doub
       col[0] += diagonal_add;
     }
   });
+}
+
+Eigen::VectorXd Kernel::weighted_sums(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::VectorXd& w,
+                                      const Eigen::Ref<const Eigen::VectorXd>& qx,
+                                      const Eigen::Ref<const Eigen::VectorXd>& qy) const {
+  const Eigen::Index n = px.size(), m = qx.size();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(m);
+  if (n == 0) return out;
+  const auto queries = [&](Eigen::Index first, Eigen::Index last) {
+    Eigen::ArrayXd column(n);
+    for (Eigen::Index j = first; j < last; ++j) {
+      column = (px.array() - qx[j]).square() + (py.array() - qy[j]).square();
+      covariance_in_place(Eigen::Map<Eigen::ArrayXd>(column.data(), n));
+      out[j] = column.matrix().dot(w);
+    }
+  };
+  if (m * n < kTwoThreadEntries)
+    queries(0, m);
+  else
+    on_two_threads(m, m / 2, queries);
+  return out;
 }
 
 void Kernel::fill_cross(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::Ref<const Eigen::VectorXd>& qx,

@@ -36,6 +36,13 @@ class Kernel {
   void fill_cross(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::Ref<const Eigen::VectorXd>& qx,
                   const Eigen::Ref<const Eigen::VectorXd>& qy, Eigen::Ref<Eigen::MatrixXd> out) const;
 
+  // K(P, Q)^T w: for each query q_j, the sum over p_i of w_i k(p_i, q_j) (a
+  // GP mean). One query's kernel column at a time, so it stays in cache and
+  // no P x Q matrix is made; many queries go on two threads.
+  Eigen::VectorXd weighted_sums(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::VectorXd& w,
+                                const Eigen::Ref<const Eigen::VectorXd>& qx,
+                                const Eigen::Ref<const Eigen::VectorXd>& qy) const;
+
  private:
   KernelKind kind_;
   Hyperparameters h_;

@@ -68,13 +68,9 @@ void SparseVfeGp::fit(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm
 
 Eigen::VectorXd SparseVfeGp::mean(const Eigen::MatrixX2d& xy_mm) const {
   check_finite(xy_mm, "query point");
-  Eigen::VectorXd out = Eigen::VectorXd::Constant(xy_mm.rows(), centring_.z_mm);
-  if (n_ == 0 || xy_mm.rows() == 0) return out;
+  if (n_ == 0) return Eigen::VectorXd::Constant(xy_mm.rows(), centring_.z_mm);
   const CentredXy q = centre(xy_mm, centring_);
-  Eigen::MatrixXd k_uq(ux_.size(), xy_mm.rows());
-  kernel_.fill_cross(ux_, uy_, q.x, q.y, k_uq);
-  out.noalias() += k_uq.transpose() * weights_;
-  return out;
+  return kernel_.weighted_sums(ux_, uy_, weights_, q.x, q.y).array() + centring_.z_mm;
 }
 
 Eigen::VectorXd SparseVfeGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count) const {

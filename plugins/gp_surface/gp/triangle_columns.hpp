@@ -5,9 +5,10 @@
 #pragma once
 
 #include <cmath>
-#include <future>
 
 #include <Eigen/Core>
+
+#include "gp/two_threads.hpp"
 
 namespace touchcloud::gp {
 
@@ -23,10 +24,7 @@ void for_triangle_columns(Eigen::Index n, Body body) {
     return;
   }
   // Columns [0, s) hold n s - s^2 / 2 entries: half of n^2 / 2 at s = n (1 - 1/sqrt 2).
-  const auto split = static_cast<Eigen::Index>(static_cast<double>(n) * (1.0 - std::sqrt(0.5)));
-  std::future<void> first = std::async(std::launch::async, [&] { body(Eigen::Index{0}, split); });
-  body(split, n);
-  first.get();
+  on_two_threads(n, static_cast<Eigen::Index>(static_cast<double>(n) * (1.0 - std::sqrt(0.5))), body);
 }
 
 }  // namespace touchcloud::gp

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "gp/kernel.hpp"
 #include "touchcloud/error.hpp"
@@ -40,10 +41,12 @@ TEST(GpKernel, LengthscaleDerivativeMatchesFiniteDifference) {
   }
 }
 
+// 601 values: Matern's chunks of 256 and a tail that is not a multiple of 4.
 TEST(GpKernel, VectorisedPathsMatchScalar) {
-  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52})
+  for (Eigen::Index count : {Eigen::Index{23}, Eigen::Index{601}}) {
     const Kernel k(kind, {0.7, 2.5, 0.0});
-    Eigen::ArrayXd r2 = Eigen::ArrayXd::LinSpaced(23, 0.0, 60.0);
+    Eigen::ArrayXd r2 = Eigen::ArrayXd::LinSpaced(count, 0.0, 60.0);
     Eigen::ArrayXd values = r2, both_k = r2, both_dk(r2.size());
     k.covariance_in_place(Eigen::Map<Eigen::ArrayXd>(values.data(), values.size()));
     k.covariance_and_d_log_lengthscale(Eigen::Map<Eigen::ArrayXd>(both_k.data(), both_k.size()),
@@ -76,6 +79,30 @@ TEST(GpKernel, LowerAndCrossFillsAgree) {
     }
   EXPECT_DOUBLE_EQ(lower(2, 2), 1.25);
   EXPECT_DOUBLE_EQ(cross(0, 1), k.covariance(1.0 + 4.0));
+}
+
+// The GP mean's sum K(P, Q)^T w, one query at a time (on two threads for the
+// larger case), against the cross matrix times w.
+TEST(GpKernel, WeightedSumsEqualTheCrossMatrixTimesTheWeights) {
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52})
+    for (const auto& [n, m] : {std::pair<Eigen::Index, Eigen::Index>{37, 50}, {300, 401}}) {
+      const Kernel k(kind, {3.0, 4.0, 0.0});
+      const Eigen::VectorXd px = 20.0 * Eigen::VectorXd::Random(n), py = 20.0 * Eigen::VectorXd::Random(n);
+      const Eigen::VectorXd qx = 25.0 * Eigen::VectorXd::Random(m), qy = 25.0 * Eigen::VectorXd::Random(m);
+      const Eigen::VectorXd w = Eigen::VectorXd::Random(n);
+      Eigen::MatrixXd cross(n, m);
+      k.fill_cross(px, py, qx, qy, cross);
+      const Eigen::VectorXd expected = cross.transpose() * w;
+      const Eigen::VectorXd sums = k.weighted_sums(px, py, w, qx, qy);
+      ASSERT_EQ(sums.size(), m);
+      // Sums of terms up to 3 in size: compare against their scale.
+      const double scale = (cross.transpose() * w.cwiseAbs()).maxCoeff();
+      EXPECT_LT((sums - expected).cwiseAbs().maxCoeff(), 1e-14 * scale) << to_string(kind) << " n " << n;
+    }
+  const Kernel k(KernelKind::rbf, {1.0, 1.0, 0.0});
+  const Eigen::VectorXd none(0), three = Eigen::VectorXd::Ones(3);
+  EXPECT_TRUE(k.weighted_sums(none, none, none, three, three).isZero());  // no points: zero at every query
+  EXPECT_EQ(k.weighted_sums(three, three, three, none, none).size(), 0);
 }
 
 // Direct differences: a pair (1, 1) mm apart at x = 1e7 mm (10 km) has the same

@@ -5,6 +5,7 @@ pixels, matching and RSRT triangulation), one trade-off at a time against
 the shipped settings (the baseline):
 
   GP             exact GP vs the sparse VFE approximation with m inducing points
+  kernel         RBF (shipped) vs Matern 5/2
   dedup          de-duplication threshold (Eq. 7)
   touches        exploration budget
   LSR            fraction of each touch's points kept (1/4 mimics a low-resolution sensor)
@@ -33,6 +34,7 @@ ACCURACY = "score.final_chamfer_mm"
 FACTORS = [
     ("baseline", ["dedup.threshold_mm=1.8"]),
     ("GP", ["fit.method=sparse", "fit.inducing_points=64,128,256"]),
+    ("kernel", ["fit.kernel=matern52"]),
     ("dedup", ["dedup.threshold_mm=0.9,3.6"]),
     ("touches", ["explore.max_iterations=10,20"]),
     ("LSR", ["thin.keep_ratio=0.25,0.5"]),

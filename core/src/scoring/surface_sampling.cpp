@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "area_lookup.hpp"
 #include "parallel_ranges.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
@@ -48,6 +49,7 @@ Points sample_surface(const TriangleMesh& mesh, std::size_t count, std::uint64_t
     throw InputError("the mesh has no surface area to sample (" + std::to_string(mesh.triangles.size()) +
                      " triangles, all degenerate)");
 
+  const AreaLookup lookup(std::move(cumulative));
   Points samples(count);
   const std::size_t blocks = (count + kSamplesPerBlock - 1) / kSamplesPerBlock;
   for_each_block(blocks, resolve_threads(threads), 1, [&](std::size_t first_block, std::size_t end_block) {
@@ -57,10 +59,7 @@ Points sample_surface(const TriangleMesh& mesh, std::size_t count, std::uint64_t
       std::mt19937_64 rng(seq);
       const std::size_t end = std::min(count, (b + 1) * kSamplesPerBlock);
       for (std::size_t i = b * kSamplesPerBlock; i < end; ++i) {
-        const double r = unit_draw(rng) * total;
-        const auto hit = std::upper_bound(cumulative.begin(), cumulative.end(), r);
-        const auto& t = mesh.triangles[static_cast<std::size_t>(
-            std::min<std::ptrdiff_t>(hit - cumulative.begin(), static_cast<std::ptrdiff_t>(cumulative.size()) - 1))];
+        const auto& t = mesh.triangles[lookup.triangle_at(unit_draw(rng) * total)];
         // Uniform in the triangle: sqrt(r1) spreads points evenly from corner a.
         const double s = std::sqrt(unit_draw(rng)), r2 = unit_draw(rng);
         samples[i] = (1 - s) * mesh.vertices[t[0]] + s * (1 - r2) * mesh.vertices[t[1]] + s * r2 * mesh.vertices[t[2]];

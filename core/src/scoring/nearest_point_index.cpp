@@ -330,13 +330,18 @@ NearestPointIndex::NearestPointIndex(Points points, int threads) : impl_(std::ma
   Eigen::Vector3d* const begin = m.points.data();
   Eigen::Vector3d* const end = begin + m.points.size();
 
-  // The first two levels of splits are cut here and the four parts below
-  // them on up to four threads; the clusters and their order are those of
-  // one depth-first walk whatever the thread count.
+  // The first split is cut here, the two below it on up to two threads and
+  // the four parts below those on up to four; the clusters and their order
+  // are those of one depth-first walk whatever the thread count.
   std::vector<Eigen::Vector3d*> cuts{begin, end};
   if (m.points.size() > kParallelBuildPoints) {
-    Eigen::Vector3d* half = split_at_median(begin, end);
-    cuts = {begin, split_at_median(begin, half), half, split_at_median(half, end), end};
+    Eigen::Vector3d* const half = split_at_median(begin, end);
+    const std::array<Eigen::Vector3d*, 3> halves{begin, half, end};
+    std::array<Eigen::Vector3d*, 2> quarters{};
+    for_each_block(2, resolve_threads(threads), 1, [&](std::size_t first, std::size_t last) {
+      for (std::size_t i = first; i < last; ++i) quarters[i] = split_at_median(halves[i], halves[i + 1]);
+    });
+    cuts = {begin, quarters[0], half, quarters[1], end};
   }
   std::vector<std::vector<Cluster>> parts(cuts.size() - 1);
   std::vector<Cluster> clusters;

@@ -3,8 +3,8 @@
 // v = L^-1 (z - z0) and, once the mean is asked for, alpha = A^-1 (z - z0).
 // The mean runs through alpha one query at a time (Kernel::weighted_sums);
 // the variance through L^-1 k_x in query blocks (memory n x block), only
-// where asked. New touches extend L by a
-// bordered Cholesky update instead of a refactorisation.
+// where asked. New touches extend L by a bordered Cholesky update instead of
+// a refactorisation.
 //
 // Copies are cheap snapshots: a bordered update only appends rows to L, so a
 // copy and the model it came from share one append-only factor store; each

@@ -103,11 +103,10 @@ Eigen::VectorXd Kernel::weighted_sums(const Eigen::VectorXd& px, const Eigen::Ve
   Eigen::VectorXd out = Eigen::VectorXd::Zero(m);
   if (n == 0) return out;
   const auto queries = [&](Eigen::Index first, Eigen::Index last) {
-    Eigen::ArrayXd column(n);
+    Eigen::MatrixXd column(n, 1);
     for (Eigen::Index j = first; j < last; ++j) {
-      column = (px.array() - qx[j]).square() + (py.array() - qy[j]).square();
-      covariance_in_place(Eigen::Map<Eigen::ArrayXd>(column.data(), n));
-      out[j] = column.matrix().dot(w);
+      fill_cross(px, py, qx.segment(j, 1), qy.segment(j, 1), column);
+      out[j] = column.col(0).dot(w);
     }
   };
   if (m * n < kTwoThreadEntries)

@@ -12,8 +12,6 @@ namespace touchcloud::gp {
 
 namespace {
 constexpr double kSqrt5 = 2.23606797749978969640917366873128;
-// Kernel values below which weighted_sums stays on one thread.
-constexpr Eigen::Index kTwoThreadEntries = Eigen::Index{1} << 16;
 }
 
 Kernel::Kernel(KernelKind kind, const Hyperparameters& h) : kind_(kind), h_(h) {
@@ -109,10 +107,7 @@ Eigen::VectorXd Kernel::weighted_sums(const Eigen::VectorXd& px, const Eigen::Ve
       out[j] = column.col(0).dot(w);
     }
   };
-  if (m * n < kTwoThreadEntries)
-    queries(0, m);
-  else
-    on_two_threads(m, m / 2, queries);
+  on_two_threads(m, m / 2, m * n, queries);
   return out;
 }
 

@@ -12,19 +12,13 @@
 
 namespace touchcloud::gp {
 
-// Below this many columns a second thread costs more than it saves.
-inline constexpr Eigen::Index kTwoThreadColumns = 256;
-
 // Calls body(first, last) on column ranges covering [0, n): [0, split) on a
-// second thread and [split, n) on this one, or [0, n) here for small n.
+// second thread and [split, n) on this one, or [0, n) here for small n
+// (n (n + 1) / 2 entries below kTwoThreadWork: n < 256).
 template <class Body>
 void for_triangle_columns(Eigen::Index n, Body body) {
-  if (n < kTwoThreadColumns) {
-    body(Eigen::Index{0}, n);
-    return;
-  }
   // Columns [0, s) hold n s - s^2 / 2 entries: half of n^2 / 2 at s = n (1 - 1/sqrt 2).
-  on_two_threads(n, static_cast<Eigen::Index>(static_cast<double>(n) * (1.0 - std::sqrt(0.5))), body);
+  on_two_threads(n, static_cast<Eigen::Index>(static_cast<double>(n) * (1.0 - std::sqrt(0.5))), n * (n + 1) / 2, body);
 }
 
 }  // namespace touchcloud::gp

@@ -23,7 +23,7 @@ TEST(TriangleColumns, EachColumnOnceWithHalfTheEntriesEachSide) {
       parts.emplace_back(entries, std::this_thread::get_id());
     });
     for (Eigen::Index j = 0; j < n; ++j) ASSERT_EQ(seen[static_cast<std::size_t>(j)], 1) << "n " << n << ", column " << j;
-    if (n < kTwoThreadColumns) {
+    if (n * (n + 1) / 2 < kTwoThreadWork) {  // n < 256
       ASSERT_EQ(parts.size(), 1u) << n;
       EXPECT_EQ(parts[0].second, std::this_thread::get_id());
       continue;

@@ -38,7 +38,8 @@ Action* add_run_verb(CLI::App& app) {
       const RunResult r = run_pipeline(p, options);
 
       std::cout << "pipeline '" << p.name() << "' ran in " << std::fixed << std::setprecision(3) << r.wall_time_s
-                << " s (seed " << o.seed << ")\n";
+                << " s (seed " << o.seed << "), after " << r.load_time_s
+                << " s loading plugins and checking stages\n";
       std::size_t width = 36;
       for (const auto& [name, series] : r.record.metrics) width = std::max(width, name.size() + 1);
       for (const auto& [name, series] : r.record.metrics)

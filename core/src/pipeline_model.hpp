@@ -88,6 +88,7 @@ struct ResolvedStage {
   std::vector<ResolvedInput> inputs;
   std::set<std::string> wanted_outputs;  // read by some stage or a loop's `until`
   std::unique_ptr<RunContext> context;
+  double check_s = 0;  // its check hook at load (e.g. reading and indexing a data file)
   StageTiming timing;
   std::vector<const ResolvedLoop*> loops;  // enclosing loops, outermost first
 };
@@ -116,6 +117,7 @@ class ResolvedPipeline {
   std::vector<ResolvedStage*> stages;     // every stage, in execution order
   std::vector<ResolvedLoop*> loops;
   RunRecord record;
+  double load_time_s = 0;  // Pipeline::load: parsing, loading plugins, checks
 };
 
 std::unique_ptr<ResolvedPipeline> resolve_pipeline(PipelineDoc doc, const std::vector<Override>& overrides,

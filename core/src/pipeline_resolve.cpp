@@ -2,6 +2,7 @@
 // execution order, and each stage's own checks. Collects every problem it
 // can find before giving up, each with its file position.
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -377,7 +378,9 @@ class Resolver {
     for (auto* s : pipeline_->stages) {
       s->context = std::make_unique<RunContext>(s->id, 0, pipeline_->record);
       try {
+        const auto started = std::chrono::steady_clock::now();
         s->stage->check(*s->context);
+        s->check_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       } catch (const ParameterError& e) {
         auto it = s->param_where.find(e.parameter());
         error(it != s->param_where.end() ? it->second : s->where,

@@ -69,6 +69,7 @@ class Runner {
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record);
       s->timing = {s->id, s->plugin->name()};
+      s->timing.check_s = s->check_s;
     }
     for (auto* s : pipeline_.stages) timed(*s, "configure", s->timing.configure_s, [&] { s->stage->configure(*s->context); });
     run_nodes(pipeline_.nodes);
@@ -79,6 +80,7 @@ class Runner {
     for (auto* s : pipeline_.stages) result.timings.push_back(s->timing);
     for (auto* l : pipeline_.loops) result.loop_iterations.emplace_back(l->id, l->iterations_run);
     result.wall_time_s = seconds_since(t0);
+    result.load_time_s = pipeline_.load_time_s;
     if (!options_.out_dir.empty()) {
       auto files = record.outputs;
       std::ofstream(staging.dir() / "summary.json") << make_summary(pipeline_, result, options_).dump(2) << "\n";
@@ -170,10 +172,13 @@ Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 Pipeline::~Pipeline() = default;
 
 Pipeline Pipeline::load(const fs::path& file, const std::vector<Override>& overrides, PluginRegistry& registry) {
+  const auto t0 = Clock::now();
   std::vector<Diagnostic> diagnostics;
   PipelineDoc doc = parse_pipeline(file, diagnostics);
   if (!diagnostics.empty()) throw InputError(diagnostics);
-  return Pipeline(resolve_pipeline(std::move(doc), overrides, registry));
+  auto resolved = resolve_pipeline(std::move(doc), overrides, registry);
+  resolved->load_time_s = seconds_since(t0);
+  return Pipeline(std::move(resolved));
 }
 
 const std::string& Pipeline::name() const { return impl_->name; }

@@ -31,6 +31,7 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
   j["seed"] = options.seed;
   j["versions"] = library_versions();
   j["wall_time_s"] = result.wall_time_s;
+  j["load_time_s"] = result.load_time_s;
 
   nlohmann::json stages = nlohmann::json::array();
   for (const auto* s : pipeline.stages) {
@@ -43,7 +44,7 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
                             {"params", params}};
     for (const auto& t : result.timings)
       if (t.id == s->id)
-        stage["time_s"] = {{"configure", t.configure_s}, {"process", t.process_s},
+        stage["time_s"] = {{"check", t.check_s}, {"configure", t.configure_s}, {"process", t.process_s},
                            {"finish", t.finish_s}, {"calls", t.calls}};
     stages.push_back(stage);
   }

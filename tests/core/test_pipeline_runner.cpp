@@ -139,3 +139,23 @@ TEST_F(PipelineRunner, SummaryRecordsParametersSeedVersionsTimesAndMetrics) {
   EXPECT_EQ(j["metrics"]["c.value"]["value"], 1.5);
   EXPECT_FALSE(fs::exists(out / (".touchcloud-staging-" + std::to_string(::getpid()))));
 }
+
+// A stage's checks run at load (a scorer reads and indexes its ground truth
+// there): their time is recorded per stage and in the load time, apart from
+// the run's wall time.
+TEST_F(PipelineRunner, SummaryRecordsCheckAndLoadTimesApartFromTheRun) {
+  const fs::path out = dir_ / "out";
+  const RunResult r = run("stages:\n  - id: slow\n    plugin: test_counter\n    params: {check_ms: 60}\n"
+                          "  - id: quick\n    plugin: test_counter\n",
+                          0, out);
+  const auto j = nlohmann::json::parse(touchcloud::test::read_file(out / "summary.json"));
+  const double slow = j["stages"][0]["time_s"]["check"].get<double>();
+  const double quick = j["stages"][1]["time_s"]["check"].get<double>();
+  EXPECT_GE(slow, 0.06);
+  EXPECT_LT(quick, slow);
+  EXPECT_GE(j["load_time_s"].get<double>(), slow + quick);
+  EXPECT_EQ(j["load_time_s"].get<double>(), r.load_time_s);
+  EXPECT_EQ(j["wall_time_s"].get<double>(), r.wall_time_s);
+  ASSERT_EQ(r.timings.size(), 2u);
+  EXPECT_EQ(r.timings[0].check_s, slow);
+}

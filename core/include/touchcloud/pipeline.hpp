@@ -74,6 +74,7 @@ struct RunOptions {
 
 struct StageTiming {
   std::string id, plugin;
+  double check_s = 0;  // at load, before the run (not in the run's wall time)
   double configure_s = 0, process_s = 0, finish_s = 0;
   std::size_t calls = 0;
 };
@@ -81,7 +82,10 @@ struct StageTiming {
 struct RunResult {
   RunRecord record;
   std::vector<StageTiming> timings;  // in execution order
-  double wall_time_s = 0;
+  double wall_time_s = 0;  // configure, the nodes, finish and the outputs
+  // Before the run, in Pipeline::load: parsing, loading plugins and every
+  // stage's checks (which may read and index data files).
+  double load_time_s = 0;
   std::vector<std::pair<std::string, int>> loop_iterations;  // loop id, iterations run
 };
 

@@ -1,5 +1,8 @@
 // Test plugin: counts calls, reads an optional number (for @previous wiring)
 // and says when the count reaches `stop_at`.
+#include <chrono>
+#include <thread>
+
 #include "touchcloud/plugin.hpp"
 
 namespace {
@@ -9,12 +12,17 @@ class CounterStage final : public touchcloud::Stage {
   std::vector<double> offsets_;
   bool flag_ = false;
   std::string label_;
+  int check_ms_ = 0;
   void declare_parameters(touchcloud::ParameterSet& p) override {
     p.add("stop_at", stop_at_, 0).at_least(0).unit("calls").doc("'done' turns true at this count (0: never)");
     p.add("step", step_, 1.0).range(-100.0, 100.0).doc("added to the previous value each call");
     p.add("offsets", offsets_, std::vector<double>{0, 0}).size(2).doc("two numbers");
     p.add("flag", flag_, false).doc("a switch");
     p.add("label", label_, std::string("a")).choices({"a", "b"}).doc("a choice");
+    p.add("check_ms", check_ms_, 0).at_least(0).unit("ms").doc("time its check hook takes (as a data file's loading)");
+  }
+  void on_check(touchcloud::RunContext&) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(check_ms_));
   }
   void declare_ports(touchcloud::PortSet& ports) override {
     ports.optional_input<double>("previous", "the value of an earlier call");

@@ -88,8 +88,7 @@ struct ResolvedStage {
   std::vector<ResolvedInput> inputs;
   std::set<std::string> wanted_outputs;  // read by some stage or a loop's `until`
   std::unique_ptr<RunContext> context;
-  double check_s = 0;  // its check hook at load (e.g. reading and indexing a data file)
-  StageTiming timing;
+  StageTiming timing;  // check_s from the load; the rest from the last run
   std::vector<const ResolvedLoop*> loops;  // enclosing loops, outermost first
 };
 

@@ -380,7 +380,7 @@ class Resolver {
       try {
         const auto started = std::chrono::steady_clock::now();
         s->stage->check(*s->context);
-        s->check_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        s->timing.check_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       } catch (const ParameterError& e) {
         auto it = s->param_where.find(e.parameter());
         error(it != s->param_where.end() ? it->second : s->where,

@@ -24,7 +24,9 @@ function(touchcloud_add_plugin name)
   if(ARG_OUTPUT_DIRECTORY)
     set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIRECTORY})
   elseif(DEFINED TOUCHCLOUD_PLUGIN_BUILD_DIR)
-    set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${TOUCHCLOUD_PLUGIN_BUILD_DIR})
+    # In this tree: <libdir>/touchcloud/plugins, two folders below the core library.
+    set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${TOUCHCLOUD_PLUGIN_BUILD_DIR}
+                          INSTALL_RPATH "$ORIGIN/../..")
   endif()
   if(NOT ARG_NO_INSTALL)
     if(DEFINED TOUCHCLOUD_PLUGIN_INSTALL_DIR)

@@ -29,11 +29,6 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-JOBS = [
-    # (pipeline, what, target in s)
-    ("pipelines/fox_mask_active.yaml", "point level", 2.0),
-    ("pipelines/fox_mask_active_images.yaml", "rendered images, whole sensing chain", 30.0),
-]
 
 
 def stolen_s():
@@ -97,8 +92,12 @@ def main():
     if args.runs < 1 or args.image_runs < 0:
         sys.exit("run_main_job_bench: --runs must be at least 1 and --image-runs at least 0")
     print(f"{os.cpu_count()} CPU(s); seed {args.seed}")
+    jobs = [  # (pipeline, what, target in s, runs)
+        ("pipelines/fox_mask_active.yaml", "point level", 2.0, args.runs),
+        ("pipelines/fox_mask_active_images.yaml", "rendered images, whole sensing chain", 30.0, args.image_runs),
+    ]
     with tempfile.TemporaryDirectory() as tmp:
-        for (pipeline, what, target), count in zip(JOBS, (args.runs, args.image_runs)):
+        for pipeline, what, target, count in jobs:
             if count:
                 runs = [one_run(cli, pipeline, args.seed, Path(tmp) / f"run{i}") for i in range(count)]
                 report(pipeline, what, target, runs)

@@ -18,6 +18,7 @@ class Chamfer final : public Stage {
   std::string ground_truth_, metrics_;
   std::int64_t samples_ = 0, sample_seed_ = 0;
   double fscore_threshold_mm_ = scoring::kDefaultFscoreThresholdMm;
+  std::optional<scoring::GroundTruthFile> file_;  // from check until configure indexes it
   std::optional<scoring::GroundTruth> gt_;
   scoring::ScoreOptions options_;
 
@@ -45,8 +46,16 @@ class Chamfer final : public Stage {
     ports.output<Score>("score", "the metrics, distances in mm");
   }
 
-  // Loading (and sampling) at check time lets `validate` report a bad file;
-  // a run loads once and scores every item against the same points.
+  scoring::GroundTruthOptions ground_truth_options() const {
+    scoring::GroundTruthOptions o;
+    o.mesh_samples = static_cast<std::size_t>(samples_);
+    o.seed = static_cast<std::uint64_t>(sample_seed_);
+    return o;
+  }
+
+  // Reading the file at check time lets `validate` report a bad one; the
+  // sampling and indexing wait for configure, which a background stage runs
+  // on its own thread while the first touches go on.
   void on_check(RunContext&) override {
     try {
       options_.metrics = scoring::MetricSelection::parse({metrics_});
@@ -54,18 +63,23 @@ class Chamfer final : public Stage {
       throw ParameterError("metrics", e.what());
     }
     options_.fscore_threshold_mm = fscore_threshold_mm_;
-    scoring::GroundTruthOptions o;
-    o.mesh_samples = static_cast<std::size_t>(samples_);
-    o.seed = static_cast<std::uint64_t>(sample_seed_);
     try {
-      gt_.emplace(scoring::load_ground_truth(ground_truth_, o));
+      file_.emplace(scoring::read_ground_truth(ground_truth_, ground_truth_options()));
     } catch (const InputError& e) {
       throw ParameterError("ground_truth", e.what());
     }
   }
 
+  // A run indexes once and scores every item against the same points.
   void on_configure(RunContext& ctx) override {
-    if (!gt_) on_check(ctx);
+    if (gt_) return;
+    if (!file_) on_check(ctx);
+    try {
+      gt_.emplace(scoring::index_ground_truth(std::move(*file_), ground_truth_options()));
+    } catch (const InputError& e) {
+      throw ParameterError("ground_truth", e.what());
+    }
+    file_.reset();
     std::ostringstream what;
     what << gt_->points.size() << " ground-truth points from " << ground_truth_;
     if (gt_->kind == scoring::GroundTruthKind::Mesh)

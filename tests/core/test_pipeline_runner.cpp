@@ -140,7 +140,7 @@ TEST_F(PipelineRunner, SummaryRecordsParametersSeedVersionsTimesAndMetrics) {
   EXPECT_FALSE(fs::exists(out / (".touchcloud-staging-" + std::to_string(::getpid()))));
 }
 
-// A stage's checks run at load (a scorer reads and indexes its ground truth
+// A stage's checks run at load (a scorer reads its ground-truth file
 // there): their time is recorded per stage and in the load time, apart from
 // the run's wall time.
 TEST_F(PipelineRunner, SummaryRecordsCheckAndLoadTimesApartFromTheRun) {

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "touchcloud/error.hpp"
-#include "touchcloud/scoring/triangle_mesh.hpp"
 
 namespace touchcloud::scoring {
 
@@ -20,24 +19,41 @@ double GroundTruth::sample_spacing_mm() const {
   return kind == GroundTruthKind::Mesh ? std::sqrt(area_mm2 / static_cast<double>(points.size())) : 0.0;
 }
 
-GroundTruth load_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options) {
+GroundTruthFile read_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options) {
+  GroundTruthFile out;
+  out.file = file;
   if (is_mesh_file(file)) {
-    const TriangleMesh mesh = read_triangle_mesh(file);
-    const double area = surface_area_mm2(mesh);
-    const std::size_t count = options.mesh_samples > 0 ? options.mesh_samples : default_mesh_samples(area);
-    Points samples;
-    try {
-      samples = sample_surface(mesh, count, options.seed, options.threads);
-    } catch (const InputError& e) {
-      throw InputError(file.string() + ": " + e.what());
-    }
-    GroundTruth gt{file, GroundTruthKind::Mesh, 0, area, mesh.triangles.size(),
-                   NearestPointIndex(std::move(samples), options.threads)};
-    return gt;
+    out.kind = GroundTruthKind::Mesh;
+    out.mesh = read_triangle_mesh(file);
+    out.area_mm2 = surface_area_mm2(out.mesh);
+    if (!(out.area_mm2 > 0) || !std::isfinite(out.area_mm2))
+      throw InputError(file.string() + ": the mesh has no surface area to sample (" +
+                       std::to_string(out.mesh.triangles.size()) + " triangles, all degenerate)");
+    return out;
   }
   CloudFile cloud = read_cloud_file(file, options.nonfinite);
-  return GroundTruth{file, GroundTruthKind::Cloud, cloud.dropped_nonfinite, 0.0, 0,
-                     NearestPointIndex(to_points(*cloud.cloud), options.threads)};
+  out.cloud = to_points(*cloud.cloud);
+  out.dropped_nonfinite = cloud.dropped_nonfinite;
+  return out;
+}
+
+GroundTruth index_ground_truth(GroundTruthFile file, const GroundTruthOptions& options) {
+  if (file.kind == GroundTruthKind::Cloud)
+    return GroundTruth{file.file, GroundTruthKind::Cloud, file.dropped_nonfinite, 0.0, 0,
+                       NearestPointIndex(std::move(file.cloud), options.threads)};
+  const std::size_t count = options.mesh_samples > 0 ? options.mesh_samples : default_mesh_samples(file.area_mm2);
+  Points samples;
+  try {
+    samples = sample_surface(file.mesh, count, options.seed, options.threads);
+  } catch (const InputError& e) {
+    throw InputError(file.file.string() + ": " + e.what());
+  }
+  return GroundTruth{file.file, GroundTruthKind::Mesh, 0, file.area_mm2, file.mesh.triangles.size(),
+                     NearestPointIndex(std::move(samples), options.threads)};
+}
+
+GroundTruth load_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options) {
+  return index_ground_truth(read_ground_truth(file, options), options);
 }
 
 Estimate read_estimate(const std::filesystem::path& file, NonFinitePoints nonfinite) {

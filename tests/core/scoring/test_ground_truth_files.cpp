@@ -79,6 +79,24 @@ TEST(GroundTruthFiles, SameSeedSameSamples) {
   EXPECT_NE(a.points.points(), c.points.points());
 }
 
+// Reading checks the file and measures the mesh; the samples come only with
+// the index, and are those a one-step load gives.
+TEST(GroundTruthFiles, ReadingLeavesTheSamplingToTheIndex) {
+  test::TempDir dir;
+  write_file(dir / "square.obj", kSquareObj);
+  scoring::GroundTruthOptions o;
+  o.mesh_samples = 1000;
+  scoring::GroundTruthFile file = scoring::read_ground_truth(dir / "square.obj", o);
+  EXPECT_EQ(file.kind, scoring::GroundTruthKind::Mesh);
+  EXPECT_EQ(file.mesh.triangles.size(), 2u);
+  EXPECT_DOUBLE_EQ(file.area_mm2, 100.0);
+  EXPECT_TRUE(file.cloud.empty());
+  const auto indexed = scoring::index_ground_truth(std::move(file), o);
+  EXPECT_EQ(indexed.points.size(), 1000u);
+  EXPECT_EQ(indexed.points.points(), scoring::load_ground_truth(dir / "square.obj", o).points.points());
+  EXPECT_DOUBLE_EQ(indexed.area_mm2, 100.0);
+}
+
 TEST(GroundTruthFiles, CloudsAreTakenAsTheyAre) {
   test::TempDir dir;
   write_file(dir / "cloud.ply", kCloudPly);
@@ -109,6 +127,8 @@ TEST(GroundTruthFiles, BrokenMeshesAreRefusedByName) {
     EXPECT_NE(m.find(name), std::string::npos) << name << ": " << m;
   }
   EXPECT_NE(message_of([&] { scoring::load_ground_truth(dir / "flat.obj"); }).find("no surface area"), std::string::npos);
+  EXPECT_NE(message_of([&] { scoring::read_ground_truth(dir / "flat.obj"); }).find("flat.obj: the mesh has no surface area"),
+            std::string::npos);
   EXPECT_NE(message_of([&] { scoring::load_ground_truth(dir / "points_only.obj"); }).find("no triangles"),
             std::string::npos);
 }

@@ -110,6 +110,11 @@ TEST_F(Chamfer, BadParametersAreFoundBeforeTheRun) {
   const std::string garbage = first_error("{ground_truth: garbage.stl}");
   EXPECT_NE(garbage.find("garbage.stl"), std::string::npos) << garbage;
   EXPECT_NE(garbage.find("not a readable stl mesh"), std::string::npos) << garbage;
+  // Read at check, sampled only at configure: a mesh with nothing to sample
+  // is still found before the run.
+  test::write_file(dir_ / "flat.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n");
+  const std::string flat = first_error("{ground_truth: flat.obj}");
+  EXPECT_NE(flat.find("flat.obj: the mesh has no surface area to sample"), std::string::npos) << flat;
   const std::string metric = first_error("{ground_truth: gt.pcd, metrics: 'chamfer'}");
   EXPECT_NE(metric.find("unknown metric 'chamfer'"), std::string::npos) << metric;
   EXPECT_NE(first_error("{ground_truth: gt.pcd, fscore_threshold_mm: 0}").find("fscore_threshold_mm"),

@@ -45,6 +45,7 @@ struct NodeDoc {
   SourceLocation plugin_where;
   std::vector<ParamDoc> params;
   std::vector<InputRefDoc> inputs;
+  bool background = false;  // `background: true`
   // a loop
   std::int64_t max_iterations = 0;
   SourceLocation max_iterations_where;
@@ -88,6 +89,10 @@ struct ResolvedStage {
   std::vector<ResolvedInput> inputs;
   std::set<std::string> wanted_outputs;  // read by some stage or a loop's `until`
   std::unique_ptr<RunContext> context;
+  // Runs on the pipeline's background thread, overlapping the stages after
+  // it (pipeline_runner.cpp); its calls stay in order.
+  bool background = false;
+  int iteration = -1;  // of the innermost enclosing loop, as the runner reaches it
   StageTiming timing;  // check_s from the load; the rest from the last run
   std::vector<const ResolvedLoop*> loops;  // enclosing loops, outermost first
 };

@@ -98,7 +98,7 @@ class Parser {
       parse_loop(loop, node);
       return node;
     }
-    check_keys(item, {"id", "plugin", "params", "inputs", "description"}, "stage '" + node.id + "'");
+    check_keys(item, {"id", "plugin", "params", "inputs", "background", "description"}, "stage '" + node.id + "'");
     const auto plugin = item["plugin"];
     if (!plugin) error(item, "stage '" + node.id + "' names no 'plugin' (or 'loop')");
     else if (!plugin.IsScalar()) error(plugin, "'plugin' is a plugin name");
@@ -112,6 +112,12 @@ class Parser {
         for (const auto& kv : params)
           node.params.push_back({kv.first.as<std::string>(""), kv.second,
                                  location_of(kv.second.IsNull() ? kv.first : kv.second, file_), false});
+    }
+    if (const auto background = item["background"]) {
+      bool value = false;
+      if (!background.IsScalar() || !YAML::convert<bool>::decode(background, value))
+        error(background, "'background' is true or false");
+      node.background = value;
     }
     if (const auto inputs = item["inputs"]) {
       if (!inputs.IsMap()) error(inputs, "'inputs' maps this stage's inputs to 'stage.output'");

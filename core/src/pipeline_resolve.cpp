@@ -144,6 +144,7 @@ class Resolver {
     auto s = std::make_unique<ResolvedStage>();
     s->id = n.id;
     s->where = n.where;
+    s->background = n.background;
     s->plugin = plugin;
     s->stage = plugin->create();
     s->params = std::make_unique<ParameterSet>();

@@ -4,7 +4,10 @@
 
 #include <chrono>
 #include <fstream>
+#include <future>
+#include <optional>
 
+#include "background_worker.hpp"
 #include "pipeline_model.hpp"
 #include "run_summary.hpp"
 
@@ -55,6 +58,25 @@ class OutputStaging {
   bool created_out_ = false, committed_ = false;
 };
 
+// A stage output as the runner holds it: the value, or, from a background
+// stage, the outputs of the call that computes it (which may still run).
+struct Value {
+  using Outputs = std::map<std::string, std::any>;
+  std::any ready;
+  std::shared_future<Outputs> pending;  // valid: from a background stage
+  std::string port;                     // of `pending`
+};
+using Values = std::unordered_map<std::string, Value>;
+
+// The value, waiting for a background call if need be (and rethrowing its
+// error); none when the call did not produce it.
+std::optional<std::any> resolve(const Value& v) {
+  if (!v.pending.valid()) return v.ready;
+  const Value::Outputs& outputs = v.pending.get();
+  if (auto it = outputs.find(v.port); it != outputs.end()) return it->second;
+  return std::nullopt;
+}
+
 class Runner {
  public:
   Runner(ResolvedPipeline& p, const RunOptions& o) : pipeline_(p), options_(o) {}
@@ -69,9 +91,21 @@ class Runner {
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays
+      s->iteration = -1;
     }
-    for (auto* s : pipeline_.stages) timed(*s, "configure", s->timing.configure_s, [&] { s->stage->configure(*s->context); });
+    for (auto* s : pipeline_.stages) {
+      const auto configure = [this, s] { timed(*s, "configure", s->timing.configure_s, [&] { s->stage->configure(*s->context); }); };
+      if (!s->background) {
+        configure();
+        continue;
+      }
+      worker_.submit([configure](std::exception_ptr earlier) {
+        if (!earlier) configure();
+      });
+    }
     run_nodes(pipeline_.nodes);
+    worker_.wait_idle();
+    rethrow_background_error();
     for (auto* s : pipeline_.stages) timed(*s, "finish", s->timing.finish_s, [&] { s->stage->finish(*s->context); });
 
     RunResult result;
@@ -108,23 +142,66 @@ class Runner {
           for (const auto& out : s->ports->outputs())
             if (auto it = values_.find(s->id + "." + out.name); it != values_.end()) previous[it->first] = it->second;
       }
-      for (auto* s : loop.stages) s->context->set_iteration(static_cast<int>(i));
+      for (auto* s : loop.stages) s->iteration = static_cast<int>(i);
       run_nodes(loop.body);
       ++loop.iterations_run;
-      if (loop.until_key && std::any_cast<bool>(values_.at(*loop.until_key))) break;
+      if (loop.until_key) {
+        const std::optional<std::any> until = resolve(values_.at(*loop.until_key));
+        if (until && std::any_cast<bool>(*until)) break;
+      }
     }
   }
 
   void run_stage(ResolvedStage& s) {
-    std::map<std::string, std::any> inputs;
+    // Inputs are gathered now, in the runner's order; a background call
+    // resolves them when it starts (those from background stages are ready
+    // by then: their calls came first).
+    std::vector<std::pair<std::string, Value>> inputs;
     for (const auto& in : s.inputs) {
       const auto& source = in.previous_of ? previous_[in.previous_of] : values_;
-      if (auto it = source.find(in.key); it != source.end()) inputs[in.port] = it->second;
+      if (auto it = source.find(in.key); it != source.end()) inputs.emplace_back(in.port, it->second);
     }
-    StageIO io(*s.ports, std::move(inputs), s.wanted_outputs);
+    if (s.background) {
+      submit_background(s, std::move(inputs));
+      return;
+    }
+    s.context->set_iteration(s.iteration);
+    for (const auto& [port, value] : process(s, inputs)) values_[s.id + "." + port] = {value, {}, {}};
+  }
+
+  // One call of the process hook, on whichever thread runs it.
+  Value::Outputs process(ResolvedStage& s, const std::vector<std::pair<std::string, Value>>& inputs) {
+    std::map<std::string, std::any> resolved;
+    for (const auto& [port, value] : inputs)
+      if (auto v = resolve(value)) resolved[port] = std::move(*v);
+    StageIO io(*s.ports, std::move(resolved), s.wanted_outputs);
     timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
     ++s.timing.calls;
-    for (auto& [port, value] : io.outputs()) values_[s.id + "." + port] = std::move(value);
+    return std::move(io.outputs());
+  }
+
+  void submit_background(ResolvedStage& s, std::vector<std::pair<std::string, Value>> inputs) {
+    rethrow_background_error();  // stop soon after a background call fails
+    auto promise = std::make_shared<std::promise<Value::Outputs>>();
+    const std::shared_future<Value::Outputs> outputs = promise->get_future().share();
+    for (const auto& out : s.ports->outputs()) values_[s.id + "." + out.name] = {{}, outputs, out.name};
+    worker_.submit([this, &s, inputs = std::move(inputs), promise, iteration = s.iteration](std::exception_ptr earlier) {
+      if (earlier) {
+        promise->set_exception(earlier);
+        return;
+      }
+      try {
+        s.context->set_iteration(iteration);
+        promise->set_value(process(s, inputs));
+      } catch (...) {
+        promise->set_exception(std::current_exception());
+        throw;
+      }
+    });
+  }
+
+  void rethrow_background_error() {
+    if (std::exception_ptr e = worker_.error()) std::rethrow_exception(e);
   }
 
   // Times a hook and puts the stage's name on anything it throws.
@@ -152,8 +229,10 @@ class Runner {
 
   ResolvedPipeline& pipeline_;
   const RunOptions& options_;
-  std::unordered_map<std::string, std::any> values_;
-  std::map<const ResolvedLoop*, std::unordered_map<std::string, std::any>> previous_;
+  Values values_;
+  std::map<const ResolvedLoop*, Values> previous_;
+  // Last: destroyed first, so no background call outlives what it uses.
+  BackgroundWorker worker_;
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <mutex>
+#include <sstream>
 
 #include "touchcloud/error.hpp"
 
@@ -20,6 +22,10 @@ std::uint64_t stable_hash(const std::string& text) {
   }
   return h;
 }
+// Background stages (pipeline_runner.cpp) report from a thread of their own:
+// every write to a run's record, and every log line, takes this lock. They
+// are a few per call, so one lock for all runs is plenty.
+std::mutex record_mutex;
 }  // namespace
 
 RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record)
@@ -33,12 +39,14 @@ RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& 
 void RunContext::metric(const std::string& name, double value, const std::string& unit) {
   if (!std::isfinite(value))
     throw RunError("metric '" + name + "' is not finite (" + std::to_string(value) + ")");
+  std::lock_guard<std::mutex> lock(record_mutex);
   auto& series = record_.metrics[stage_id_ + "." + name];
   series.unit = unit;
   series.values.push_back(value);
 }
 
 void RunContext::note(const std::string& name, const std::string& text) {
+  std::lock_guard<std::mutex> lock(record_mutex);
   record_.notes[stage_id_ + "." + name] = text;
 }
 
@@ -49,6 +57,7 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
   const std::filesystem::path rel(file_name);
   if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0)
     throw ParameterError("path", "output file '" + file_name + "' must stay inside the output folder");
+  std::lock_guard<std::mutex> lock(record_mutex);
   const auto path = record_.staging_dir / rel.lexically_normal();
   std::filesystem::create_directories(path.parent_path());
   const std::string name = rel.lexically_normal().string();
@@ -59,7 +68,11 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
 }
 
 void RunContext::log(const std::string& message) const {
-  if (!record_.quiet) std::clog << "[" << stage_id_ << "] " << message << "\n";
+  if (record_.quiet) return;
+  std::ostringstream line;
+  line << "[" << stage_id_ << "] " << message << "\n";
+  std::lock_guard<std::mutex> lock(record_mutex);
+  std::clog << line.str() << std::flush;
 }
 
 std::string RunContext::with_iteration(std::string text) const {

@@ -42,6 +42,7 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
                             {"plugin_built_for", s->plugin->toolkit_version()},
                             {"library", s->plugin->library().string()},
                             {"params", params}};
+    if (s->background) stage["background"] = true;
     for (const auto& t : result.timings)
       if (t.id == s->id)
         stage["time_s"] = {{"check", t.check_s}, {"configure", t.configure_s}, {"process", t.process_s},

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <random>
 
+#include "gp/factor_algebra.hpp"
 #include "gp/hyperparameter_search.hpp"
 #include "gp/inducing_points.hpp"
 #include "gp/point_subset.hpp"
@@ -35,6 +36,7 @@ class GpSurface final : public Stage {
   int screening_points_ = 500;
   double initial_lengthscale_mm_ = 10.0;
   double max_noise_mm_ = 1.0;
+  int blas_threads_ = 0;
 
   Eigen::MatrixX2d xy_{0, 2};
   Eigen::VectorXd z_;
@@ -66,7 +68,11 @@ class GpSurface final : public Stage {
     p.add("max_noise_mm", max_noise_mm_, 1.0).unit("mm").above(0.0)
         .doc("largest noise standard deviation model selection may choose (touch points are accurate to a few "
              "tenths of a mm); keeps few or rough points from being explained as noise around a flat mean");
+    p.add("blas_threads", blas_threads_, 0).at_least(0).unit("threads")
+        .doc("threads of the factorisations and solves (OpenBLAS: one count for the whole process); 0: "
+             "OpenBLAS's own, a thread per core; 1 leaves the other cores to background stages");
   }
+  void on_configure(RunContext&) override { gp::set_factor_algebra_threads(blas_threads_); }
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.output<SurfaceModelPtr>("surface", "the fitted surface");

@@ -137,6 +137,23 @@ Eigen::MatrixXd product_transposed(const Eigen::Ref<const Eigen::MatrixXd>& a,
   return c;
 }
 
+void set_factor_algebra_threads(int threads) {
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  static const int initial = openblas_get_num_threads();
+  openblas_set_num_threads(threads > 0 ? threads : initial);
+#else
+  (void)threads;
+#endif
+}
+
+int factor_algebra_threads() {
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  return openblas_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
 const char* factor_algebra_backend() {
 #ifdef TOUCHCLOUD_GP_OPENBLAS
   static const std::string name = std::string("OpenBLAS ") + openblas_get_config() + " (" +

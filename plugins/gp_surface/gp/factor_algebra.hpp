@@ -31,6 +31,14 @@ void subtract_product(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eige
 // a b^T.
 Eigen::MatrixXd product_transposed(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b);
 
+// Threads of the operations above: n > 0, or 0 for the count OpenBLAS
+// started with (a thread per core unless OPENBLAS_NUM_THREADS says
+// otherwise). OpenBLAS keeps one count for the whole process, so this sets
+// it for every caller. Eigen's path runs on one thread whatever the count.
+void set_factor_algebra_threads(int threads);
+// The count in force: OpenBLAS's, or 1 for Eigen.
+int factor_algebra_threads();
+
 // "OpenBLAS <version>" or "Eigen".
 const char* factor_algebra_backend();
 

@@ -10,7 +10,8 @@ Each run is one `touchcloud run` process with the same seed, so every run
 does the same work and differs only by the machine. Per run it prints:
   run      summary.json's wall_time_s: the stages' work, after loading
   load     summary.json's load_time_s: parsing, plugins, every stage's check
-           (the chamfer stage samples and indexes its CAD mesh there)
+           (the chamfer stage reads its CAD mesh there; its sampling and
+           indexing run in its configure, on the background thread)
   process  the whole process, start to exit, as `time` would show
   steal    CPU time the host took from this machine's virtual CPUs during
            the run (/proc/stat; '-' where the kernel does not report it)

@@ -14,7 +14,9 @@ BackgroundWorker::~BackgroundWorker() {
 
 void BackgroundWorker::submit(Task task) {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_lock<std::mutex> lock(mutex_);
+    // Tasks never wait for the submitter, so the worker frees room.
+    room_.wait(lock, [this] { return queue_.size() < max_queued_; });
     queue_.push_back(std::move(task));
     if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
   }
@@ -44,6 +46,7 @@ void BackgroundWorker::run() {
       busy_ = true;
       earlier = error_;
     }
+    room_.notify_all();  // a task taken, not finished, frees its place
     std::exception_ptr thrown;
     try {
       task(earlier);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <condition_variable>
+#include <cstddef>
 #include <deque>
 #include <exception>
 #include <functional>
@@ -22,7 +23,9 @@ class BackgroundWorker {
   // only passes that error on to whoever waits for its results.
   using Task = std::function<void(std::exception_ptr earlier_error)>;
 
-  BackgroundWorker() = default;
+  // submit() waits while `max_queued` tasks wait to start, so a slow
+  // background stage holds the inputs of at most that many calls.
+  explicit BackgroundWorker(std::size_t max_queued = 16) : max_queued_(max_queued < 1 ? 1 : max_queued) {}
   BackgroundWorker(const BackgroundWorker&) = delete;
   BackgroundWorker& operator=(const BackgroundWorker&) = delete;
   // Drops the tasks not started and waits for the running one.
@@ -38,8 +41,9 @@ class BackgroundWorker {
  private:
   void run();
 
+  const std::size_t max_queued_;
   std::mutex mutex_;
-  std::condition_variable wake_, idle_;
+  std::condition_variable wake_, room_, idle_;  // a task queued; one taken; none left
   std::deque<Task> queue_;
   bool busy_ = false, stopping_ = false;
   std::exception_ptr error_;

@@ -1,5 +1,7 @@
 // Runs a resolved pipeline: configure every stage, run the nodes (loops
 // iterate up to their budget), finish, then publish outputs atomically.
+// Background stages get their calls (configure included) queued to one
+// worker thread; their outputs are futures, which a reader waits for.
 #include <unistd.h>
 
 #include <chrono>
@@ -166,7 +168,7 @@ class Runner {
       return;
     }
     s.context->set_iteration(s.iteration);
-    for (const auto& [port, value] : process(s, inputs)) values_[s.id + "." + port] = {value, {}, {}};
+    for (auto& [port, value] : process(s, inputs)) values_[s.id + "." + port] = {std::move(value), {}, {}};
   }
 
   // One call of the process hook, on whichever thread runs it.

@@ -90,7 +90,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--touchcloud", default="build/bin/touchcloud")
     ap.add_argument("--seeds", type=int, default=5)
-    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="runs at a time (default 1: a run keeps two cores busy, its background stages "
+                         "beside the loop, so more at once slows each and skews the run times)")
     ap.add_argument("--out", required=True)
     ap.add_argument("--set", action="append", default=[], metavar="K=V",
                     help="an override for every run (e.g. explore.max_iterations=10 for a quick look)")

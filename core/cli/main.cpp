@@ -9,7 +9,8 @@
 namespace {
 
 // Located diagnostics print compiler-style (FILE:LINE:COL: error: ...), one a
-// line; the last line always begins "touchcloud: error:".
+// line; the last line always begins "touchcloud: error:". It claims only that
+// nothing was written: bad data found by a stage comes after stages have run.
 void report(const touchcloud::InputError& e) {
   const auto& diags = e.diagnostics();
   if (diags.size() == 1 && diags[0].where.line == 0) {
@@ -19,7 +20,7 @@ void report(const touchcloud::InputError& e) {
   }
   for (const auto& d : diags) std::cerr << d.str() << "\n";
   std::cerr << "touchcloud: error: " << diags.size() << (diags.size() == 1 ? " problem" : " problems")
-            << " found; nothing was run or written\n";
+            << " found; nothing was written\n";
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cloud_files.hpp"
 #include "test_support.hpp"
 
 using touchcloud::test::read_file;
@@ -111,6 +112,32 @@ TEST(Cli, AStageThatThrowsExitsOneNamingTheStage) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_TRUE(has_line_starting(r.err, "touchcloud: error: stage 'tear' (plugin test_throwing) failed in process"))
       << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// Bad data met by a stage while running: a first touch whose 5 points share
+// one (x, y) leaves gp_surface no length scale to select. Exit 2, the error
+// located at the stage, the last line true though stages ran, and no --out.
+TEST(Cli, BadTouchDataFoundByAStageExitsTwoAndWritesNothing) {
+  touchcloud::test::TempDir dir;
+  touchcloud::PointCloud same;
+  for (int k = 1; k <= 5; ++k) same.push_back(pcl::PointXYZ(3, 4, k));
+  touchcloud::test::save_pcd(dir / "same_spot.pcd", same);
+  write_file(dir / "p.yaml",
+             "stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: same_spot.pcd}\n"
+             "  - id: fit\n    plugin: gp_surface\n    inputs: {cloud: read.cloud}\n"
+             "  - id: sample\n    plugin: surface_sampler\n"
+             "    params: {workspace_x_mm: [0, 10], workspace_y_mm: [0, 10], resolution: [5, 5]}\n"
+             "    inputs: {surface: fit.surface}\n"
+             "  - id: write\n    plugin: cloud_writer\n    params: {path: surface.pcd}\n    inputs: {cloud: sample.cloud}\n");
+  const auto r = run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / "out").string(), "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(has_line_starting(r.err, (dir / "p.yaml").string() + ":5:9: error: stage 'fit' (plugin gp_surface): "))
+      << r.err;
+  EXPECT_NE(r.err.find("all 5 training points share (x, y) = (3, 4) mm"), std::string::npos) << r.err;
+  ASSERT_FALSE(r.err.empty());
+  const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+  EXPECT_EQ(last, "touchcloud: error: 1 problem found; nothing was written\n");
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 

@@ -14,7 +14,9 @@
 // hyperparameters are selected with the exact LML on such a subset of at most
 // `inducing_points` points (the VFE bound has no gradient here yet).
 #include <chrono>
+#include <cmath>
 #include <random>
+#include <sstream>
 
 #include "gp/factor_algebra.hpp"
 #include "gp/hyperparameter_search.hpp"
@@ -76,6 +78,20 @@ class GpSurface final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.output<SurfaceModelPtr>("surface", "the fitted surface");
+  }
+
+  // Before append(): a non-finite point would stay in the training set and
+  // fail every later fit, so the whole touch is refused and the points so far
+  // stay as they were.
+  static void check_finite(const PointCloud& cloud) {
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const auto& p = cloud[i];
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+      std::ostringstream msg;
+      msg << "point " << i << " of this touch's " << cloud.size() << " has a non-finite coordinate (x, y, z) = ("
+          << p.x << ", " << p.y << ", " << p.z << ") mm; the touch was not added";
+      throw InputError(msg.str());
+    }
   }
 
   void append(const PointCloud& cloud) {
@@ -143,6 +159,7 @@ class GpSurface final : public Stage {
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud) throw RunError("no cloud to add");
+    check_finite(*cloud);
     const Eigen::Index n0 = xy_.rows();
     append(*cloud);
     const Eigen::Index n = xy_.rows();

@@ -5,11 +5,11 @@
 #include <future>
 #include <mutex>
 #include <numbers>
-#include <sstream>
 
 #include <Eigen/Dense>
 
 #include "gp/factor_algebra.hpp"
+#include "gp/latent_variance.hpp"
 #include "gp/vector_exp.hpp"
 
 #include "touchcloud/error.hpp"
@@ -310,17 +310,7 @@ Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* cl
         out.segment(b0, kb.cols()) -= kb.colwise().squaredNorm().transpose();
       });
     }
-    for (Eigen::Index i = 0; i < m; ++i) {
-      if (std::isnan(out[i])) {
-        std::ostringstream msg;
-        msg << "GP variance: NaN at query point " << i << " (the factor of " << n_ << " points is corrupt)";
-        throw RunError(msg.str());
-      }
-      if (out[i] < 0.0) {  // rounding: k(x,x) and ||L^-1 k_x||^2 nearly cancel
-        out[i] = 0.0;
-        ++clamped;
-      }
-    }
+    clamped = clamp_latent_variance(out, "GP", n_);
   }
   if (clamped_count) *clamped_count = clamped;
   return out;

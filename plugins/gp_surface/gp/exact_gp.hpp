@@ -81,8 +81,9 @@ class ExactGp {
   // goes through mean().
   Eigen::MatrixXd mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen::VectorXd& ys_mm) const;
   // Latent (noise-free) variance, mm^2, clamped at 0; the number of clamped
-  // values goes to *clamped_count when given. Thread-safe, like every const
-  // member; a set asked for again (same points, same order) reuses V.
+  // values goes to *clamped_count when given; RunError for a value that is not
+  // finite (gp/latent_variance.hpp). Thread-safe, like every const member; a
+  // set asked for again (same points, same order) reuses V.
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
   double log_marginal_likelihood() const;
 

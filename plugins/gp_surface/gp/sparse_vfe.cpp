@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include "gp/latent_variance.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud::gp {
@@ -85,12 +86,7 @@ Eigen::VectorXd SparseVfeGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t
     out -= w.colwise().squaredNorm().transpose();
     l_b_.triangularView<Eigen::Lower>().solveInPlace(w);  // L_B^-1 L_uu^-1 K_u*
     out += w.colwise().squaredNorm().transpose();
-    for (Eigen::Index i = 0; i < out.size(); ++i) {
-      if (out[i] < 0.0) {
-        out[i] = 0.0;
-        ++clamped;
-      }
-    }
+    clamped = clamp_latent_variance(out, "sparse VFE GP", n_);
   }
   if (clamped_count) *clamped_count = clamped;
   return out;

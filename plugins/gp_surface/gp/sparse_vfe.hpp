@@ -30,6 +30,8 @@ class SparseVfeGp {
 
   double log_marginal_likelihood_bound() const { return bound_; }
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy_mm) const;
+  // Latent variance, clamped at 0 and counted, RunError when not finite, as
+  // ExactGp::variance.
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
 
   Eigen::Index size() const { return n_; }

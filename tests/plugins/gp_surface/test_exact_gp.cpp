@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/Dense>
@@ -279,6 +280,30 @@ TEST(GpExact, VarianceIsNeverNegativeOrNaN) {
       EXPECT_LE(var.maxCoeff(), 3.0);
     }
   }
+}
+
+// Case 8: a variance that is not finite is an error, never a clamped 0. With
+// the signal variance at the top of the double range, ||L^-1 k_x||^2 at the
+// one training point rounds up past it to inf, so s2 - ||L^-1 k_x||^2 is -inf;
+// clamped, it would claim a certainty the model does not have.
+TEST(GpExact, NonFiniteVarianceIsARunError) {
+  const double top = std::numeric_limits<double>::max();
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    ExactGp gp(kind, {top, 10.0, 0.0});
+    gp.fit(one_point(5.0, 5.0), Eigen::VectorXd::Constant(1, 2.0));
+    try {
+      gp.variance(one_point(5.0, 5.0));
+      FAIL() << to_string(kind) << ": expected RunError";
+    } catch (const RunError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("-inf mm^2 at query point 0 is not finite"), std::string::npos) << what;
+    }
+  }
+  // Far from the point nothing overflows (RBF: Matern's polynomial factor
+  // overflows s2 itself there): the prior, as it was.
+  ExactGp rbf(KernelKind::rbf, {top, 10.0, 0.0});
+  rbf.fit(one_point(5.0, 5.0), Eigen::VectorXd::Constant(1, 2.0));
+  EXPECT_EQ(rbf.variance(one_point(500.0, 5.0))[0], top);
 }
 
 // Case 14: no data is the prior; one point is the prior mean (z0 = that z)

@@ -1,5 +1,8 @@
-// Sparse VFE approximation: hard case 13 and the bound's defining properties.
+// Sparse VFE approximation: hard case 13, the bound's defining properties, and
+// the variance guard of case 8.
 #include <gtest/gtest.h>
+
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -55,6 +58,23 @@ TEST(GpSparseVfe, BoundIsBelowExactAndGrowsWithNestedSets) {
     EXPECT_TRUE(var.allFinite());
     EXPECT_GE(var.minCoeff(), 0.0);
   }
+}
+
+// Case 8, as for the exact GP: at the top of the double range the explained
+// part ||L_uu^-1 k_u||^2 overflows to inf at the inducing point, and the
+// variance there (-inf) is an error, not a clamped 0.
+TEST(GpSparseVfe, NonFiniteVarianceIsARunError) {
+  const double top = std::numeric_limits<double>::max();
+  const Eigen::MatrixX2d p = test::one_point(5.0, 5.0);
+  SparseVfeGp sparse(KernelKind::rbf, {top, 10.0, 1e300});
+  sparse.fit(p, Eigen::VectorXd::Constant(1, 2.0), p);
+  try {
+    sparse.variance(p);
+    FAIL() << "expected RunError";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("-inf mm^2 at query point 0 is not finite"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(sparse.variance(test::one_point(500.0, 5.0))[0], top);
 }
 
 TEST(GpSparseVfe, NeedsNoiseAndInducingPoints) {

@@ -1,0 +1,20 @@
+// The last step of a latent variance, prior minus what the data explain, for
+// every model here: rounding may leave a value a little below 0 (clamped and
+// counted), but a non-finite value means a corrupt factor or an overflow, and
+// must never reach the next-touch choice as a number (stability case 8).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace touchcloud::gp {
+
+// Clamps negative values at 0 and returns how many. RunError naming `model`,
+// the query point and its value at the first value that is not finite (NaN
+// or +-inf; -inf must not pass as a clamped 0).
+std::size_t clamp_latent_variance(Eigen::Ref<Eigen::VectorXd> variance_mm2, const std::string& model,
+                                  Eigen::Index training_points);
+
+}  // namespace touchcloud::gp

@@ -92,11 +92,14 @@ TEST(GpExact, GridMeanEqualsPointwiseMean) {
   EXPECT_THROW(empty.mean_on_grid(bad, ys), InputError);
 }
 
-// Case 1: two observations at one (x, y) with z 1 mm apart.
+// Case 1: two observations at one (x, y) with z 1 mm apart. The duplicate
+// sits at (0, 0), the middle of the data's box, so centring leaves it at 0 and
+// a shift of 1e-15 mm reaches the kernel as it is (at x = 20 mm it would
+// round away: 20 + 1e-15 == 20).
 TEST(GpExact, ExactDuplicatesAverage) {
-  Eigen::MatrixX2d xy = grid_xy(5, 5, 0.0, 40.0);
+  Eigen::MatrixX2d xy = grid_xy(5, 5, -20.0, 20.0);
   Eigen::VectorXd z = heights(xy);
-  const Eigen::Index dup = 12;  // (20, 20)
+  const Eigen::Index dup = 12;  // (0, 0)
   xy.conservativeResize(26, 2);
   z.conservativeResize(26);
   xy.row(25) = xy.row(dup);
@@ -104,21 +107,25 @@ TEST(GpExact, ExactDuplicatesAverage) {
   const double average = z[dup] + 0.5;
   const Eigen::MatrixX2d at = xy.row(dup);
 
-  for (double noise : {1e-6, 0.0}) {
-    ExactGp gp(KernelKind::rbf, {4.0, 10.0, noise});
-    gp.fit(xy, z);
-    EXPECT_NEAR(gp.mean(at)[0], average, 1e-4) << "noise " << noise;
-    if (noise == 0.0) {
-      EXPECT_GT(gp.factorisation().jitter_mm2, 0.0);
-    }
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    for (double noise : {1e-6, 0.0}) {
+      ExactGp gp(kind, {4.0, 10.0, noise});
+      gp.fit(xy, z);
+      EXPECT_NEAR(gp.mean(at)[0], average, 1e-4) << to_string(kind) << " noise " << noise;
+      if (noise == 0.0) {
+        EXPECT_GT(gp.factorisation().jitter_mm2, 0.0);
+      }
 
-    // 1e-15 mm vanishes in centring (ulp of 20 mm is 3.6e-15); 1e-12 survives.
-    for (double shift : {1e-15, 1e-12}) {
-      Eigen::MatrixX2d shifted = xy;
-      shifted(25, 0) += shift;
-      ExactGp gp_shifted(KernelKind::rbf, {4.0, 10.0, noise});
-      gp_shifted.fit(shifted, z);
-      EXPECT_NEAR(gp_shifted.mean(at)[0], gp.mean(at)[0], 1e-6) << "noise " << noise << " shift " << shift;
+      for (double shift : {1e-15, 1e-12}) {
+        Eigen::MatrixX2d shifted = xy;
+        shifted(25, 0) += shift;
+        ASSERT_NE(shifted(25, 0), xy(25, 0)) << "shift " << shift << " must change the input";
+        ExactGp gp_shifted(kind, {4.0, 10.0, noise});
+        gp_shifted.fit(shifted, z);
+        ASSERT_EQ(gp_shifted.centring().x_mm, 0.0) << "and survive centring";
+        EXPECT_NEAR(gp_shifted.mean(at)[0], gp.mean(at)[0], 1e-6)
+            << to_string(kind) << " noise " << noise << " shift " << shift;
+      }
     }
   }
 }

@@ -254,6 +254,46 @@ TEST(GpHyperparameterSearch, FailedEvaluationsBackOff) {
   EXPECT_TRUE(std::isfinite(r.lml));
 }
 
+// Case 10 on the real failure path: exact duplicate (x, y) whose z differ by
+// 1e-7 mm ask for a noise variance of ~1e-14 mm^2 against a signal of a few
+// mm^2, the edge of what a Cholesky factorises without jitter (pivots of ~2g
+// against n eps ~ 1e-14, g = noise / s2). With no jitter allowed and the noise
+// bound far below that edge, the search steps onto covariances that cannot be
+// factorised; each such step fails and the line search backs off.
+TEST(GpHyperparameterSearch, UnfactorisableStepsOnDuplicatesBackOff) {
+  Eigen::MatrixX2d xy = grid_xy(6, 6, 0.0, 50.0);
+  Eigen::VectorXd z = heights(xy);
+  const Eigen::Index n0 = xy.rows();
+  xy.conservativeResize(n0 + 4, 2);
+  z.conservativeResize(n0 + 4);
+  for (Eigen::Index k = 0; k < 4; ++k) {
+    xy.row(n0 + k) = xy.row(7 * (k + 1));
+    z[n0 + k] = z[7 * (k + 1)] + 1e-7;
+  }
+  SearchOptions options;
+  options.jitter.max_jitter_tries = 0;
+  options.bounds.noise_variance_low = 1e-16;  // x var(z): g down to 1e-20
+  options.start_hyperparameters = {{4.0, 10.0, 1e-9}};
+  const SearchResult r = select_hyperparameters(xy, z, options);
+  EXPECT_GT(r.failed_evaluations, 0);
+  ASSERT_EQ(r.starts.size(), 1u);
+  EXPECT_EQ(r.starts[0].failed_evaluations, r.failed_evaluations);
+  EXPECT_GT(r.initial_lml, kNoLml) << "the start itself factorises";
+  EXPECT_TRUE(std::isfinite(r.lml));
+  EXPECT_GE(r.lml, r.initial_lml);
+  EXPECT_TRUE(r.bounds.contains(r.hyperparameters));
+  EXPECT_LT(r.hyperparameters.noise_variance_mm2, 1e-12) << "the noise the duplicates ask for";
+  // The result is a point that factorised without jitter, at the LML reported.
+  MarginalLikelihood lml(KernelKind::rbf, xy, z, options.jitter);
+  const Hyperparameters& h = r.hyperparameters;
+  EXPECT_NEAR(lml.evaluate_profiled(h.lengthscale_mm, h.noise_variance_mm2 / h.signal_variance_mm2, r.bounds, false).lml,
+              r.lml, 1e-9 * std::abs(r.lml));
+
+  // One jitter try rescues every step: the failures were the factorisation's.
+  options.jitter.max_jitter_tries = 1;
+  EXPECT_EQ(select_hyperparameters(xy, z, options).failed_evaluations, 0);
+}
+
 TEST(GpHyperparameterSearch, AStartThatCannotBeEvaluatedIsSkipped) {
   const Eigen::MatrixX2d xy = random_xy(60, 35);
   MarginalLikelihood lml(KernelKind::rbf, xy, heights(xy, 0.1));

@@ -104,4 +104,9 @@ TEST_F(NextTouchStage, EmptyWorkspaceIsRefusedAtValidation) {
   ASSERT_EQ(d.size(), 1u);
   EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter 'workspace_x_mm': the workspace is empty")) << d[0].str();
   EXPECT_EQ(d[0].where.line, 4);
+  // y, with max below min.
+  const auto dy = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {workspace_y_mm: [20, 10]}\n");
+  ASSERT_EQ(dy.size(), 1u);
+  EXPECT_TRUE(touchcloud::test::mentions(dy[0], "parameter 'workspace_y_mm': the workspace is empty")) << dy[0].str();
+  EXPECT_EQ(dy[0].where.line, 4);
 }

@@ -1,5 +1,6 @@
 // The sampled surface lies on the model's mean, on the requested lattice;
-// the same model again gives the same points without evaluating it again.
+// the same model again gives the same points without evaluating it again; an
+// empty workspace is refused at validation.
 #include "cloud_files.hpp"
 #include "pipeline_fixture.hpp"
 #include "stage_harness.hpp"
@@ -28,6 +29,21 @@ TEST_F(SurfaceSampler, LatticeOfTheMeanOverTheWorkspace) {
   EXPECT_FLOAT_EQ(c[1].x, -9);
   EXPECT_FLOAT_EQ(c[104].y, 40);
   for (const auto& q : c.points) EXPECT_NEAR(q.z, 0.5 * q.x - 0.25 * q.y + 3, 1e-5);
+}
+
+// As next_touch: an empty workspace along x or y (max not above min) is
+// refused when the pipeline is checked, at the parameter's line.
+TEST_F(SurfaceSampler, EmptyWorkspaceIsRefusedAtValidation) {
+  for (const std::string& bad : {std::string("workspace_x_mm: [10, 10]"), std::string("workspace_y_mm: [20, 10]")}) {
+    const auto d = errors(
+        "stages:\n  - id: model\n    plugin: test_plane_surface\n"
+        "  - id: sample\n    plugin: surface_sampler\n    params: {" + bad + "}\n"
+        "    inputs: {surface: model.surface}\n");
+    ASSERT_EQ(d.size(), 1u) << bad;
+    const std::string parameter = bad.substr(0, bad.find(':'));
+    EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter '" + parameter + "': the workspace is empty")) << d[0].str();
+    EXPECT_EQ(d[0].where.line, 6) << bad;
+  }
 }
 
 namespace {

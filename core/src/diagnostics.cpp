@@ -37,4 +37,8 @@ ParameterError::ParameterError(std::string parameter, std::string message)
       parameter_(std::move(parameter)),
       detail_(std::move(message)) {}
 
+InputError::~InputError() = default;
+ParameterError::~ParameterError() = default;
+RunError::~RunError() = default;
+
 }  // namespace touchcloud

@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 
+#include "stage_harness.hpp"
 #include "test_support.hpp"
 #include "touchcloud/plugin_registry.hpp"
 
@@ -97,4 +98,32 @@ TEST(PluginRegistry, EnvironmentFoldersComeAfterBuiltInOnes) {
 TEST(PluginRegistry, RejectsNamesThatAreNotIdentifiers) {
   PluginRegistry registry;
   EXPECT_THROW(registry.load("../etc/passwd"), InputError);
+}
+
+// The CLI reports an error after the pipeline, and with it the plugin that
+// threw it, is gone: the error's type and message must not live in the
+// plugin's code.
+TEST(PluginRegistry, AnErrorAPluginThrowsOutlivesThePlugin) {
+  for (const std::string kind : {"input", "run"}) {
+    std::exception_ptr thrown;
+    {
+      test::StageHarness stage("test_throwing", {{"error", kind}});
+      stage.configure();
+      try {
+        stage.process({}, {"value"});
+      } catch (...) {
+        thrown = std::current_exception();
+      }
+    }  // the harness's registry unloads the library here
+    ASSERT_TRUE(thrown) << kind;
+    try {
+      std::rethrow_exception(thrown);
+    } catch (const InputError& e) {
+      EXPECT_EQ(kind, "input");
+      EXPECT_STREQ(e.what(), "the gel tore (simulated failure)");
+    } catch (const RunError& e) {
+      EXPECT_EQ(kind, "run");
+      EXPECT_STREQ(e.what(), "the gel tore (simulated failure)");
+    }
+  }
 }

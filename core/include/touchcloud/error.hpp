@@ -22,11 +22,17 @@ struct Diagnostic {
   std::string str() const;  // "FILE:LINE:COL: error: message"
 };
 
+// The destructors below are defined in the core so that these classes'
+// vtables and type info live there only: an error a plugin throws must stay
+// usable after the plugin is unloaded (the CLI reports it after the pipeline,
+// and with it the plugin, is gone).
+
 // Bad input: usage, pipeline, scene, data file. Holds one or more diagnostics.
 class InputError : public std::runtime_error {
  public:
   explicit InputError(std::string message, SourceLocation where = {});
   explicit InputError(std::vector<Diagnostic> diagnostics);
+  ~InputError() override;
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
 
  private:
@@ -38,6 +44,7 @@ class InputError : public std::runtime_error {
 class ParameterError : public InputError {
  public:
   ParameterError(std::string parameter, std::string message);
+  ~ParameterError() override;
   const std::string& parameter() const { return parameter_; }
   const std::string& detail() const { return detail_; }
 
@@ -50,6 +57,7 @@ class ParameterError : public InputError {
 class RunError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  ~RunError() override;
 };
 
 }  // namespace touchcloud

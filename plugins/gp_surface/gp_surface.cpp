@@ -14,14 +14,13 @@
 // hyperparameters are selected with the exact LML on such a subset of at most
 // `inducing_points` points (the VFE bound has no gradient here yet).
 #include <chrono>
-#include <cmath>
 #include <random>
-#include <sstream>
 
 #include "gp/factor_algebra.hpp"
 #include "gp/hyperparameter_search.hpp"
 #include "gp/inducing_points.hpp"
 #include "gp/point_subset.hpp"
+#include "gp/training_data.hpp"
 #include "gp_surface_model.hpp"
 #include "sparse_surface_model.hpp"
 #include "touchcloud/plugin.hpp"
@@ -80,29 +79,24 @@ class GpSurface final : public Stage {
     ports.output<SurfaceModelPtr>("surface", "the fitted surface");
   }
 
-  // Before append(): a non-finite point would stay in the training set and
-  // fail every later fit, so the whole touch is refused and the points so far
-  // stay as they were.
-  static void check_finite(const PointCloud& cloud) {
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      const auto& p = cloud[i];
-      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
-      std::ostringstream msg;
-      msg << "point " << i << " of this touch's " << cloud.size() << " has a non-finite coordinate (x, y, z) = ("
-          << p.x << ", " << p.y << ", " << p.z << ") mm; the touch was not added";
-      throw InputError(msg.str());
-    }
-  }
-
+  // The touch is checked before it joins the training set: a non-finite
+  // point would stay there and fail every later fit, so a bad touch is
+  // refused whole and the touches so far stay as they were.
   void append(const PointCloud& cloud) {
-    const Eigen::Index n0 = xy_.rows(), k = static_cast<Eigen::Index>(cloud.size());
-    xy_.conservativeResize(n0 + k, 2);
-    z_.conservativeResize(n0 + k);
+    const Eigen::Index k = static_cast<Eigen::Index>(cloud.size());
+    Eigen::MatrixX2d xy(k, 2);
+    Eigen::VectorXd z(k);
     for (Eigen::Index i = 0; i < k; ++i) {
       const auto& p = cloud[static_cast<std::size_t>(i)];
-      xy_.row(n0 + i) << p.x, p.y;
-      z_[n0 + i] = p.z;
+      xy.row(i) << p.x, p.y;
+      z[i] = p.z;
     }
+    gp::check_training(xy, z, "point of this touch");
+    const Eigen::Index n0 = xy_.rows();
+    xy_.conservativeResize(n0 + k, 2);
+    z_.conservativeResize(n0 + k);
+    xy_.bottomRows(k) = xy;
+    z_.tail(k) = z;
   }
 
   // Hyperparameters for all the points, from a subset when asked; warm-started
@@ -159,7 +153,6 @@ class GpSurface final : public Stage {
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud) throw RunError("no cloud to add");
-    check_finite(*cloud);
     const Eigen::Index n0 = xy_.rows();
     append(*cloud);
     const Eigen::Index n = xy_.rows();

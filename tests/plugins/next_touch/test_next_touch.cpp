@@ -100,13 +100,12 @@ TEST_F(NextTouchStage, InitialTouchesAreRandomThenVarianceDecides) {
 }
 
 TEST_F(NextTouchStage, EmptyWorkspaceIsRefusedAtValidation) {
-  const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {workspace_x_mm: [10, 10]}\n");
-  ASSERT_EQ(d.size(), 1u);
-  EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter 'workspace_x_mm': the workspace is empty")) << d[0].str();
-  EXPECT_EQ(d[0].where.line, 4);
-  // y, with max below min.
-  const auto dy = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {workspace_y_mm: [20, 10]}\n");
-  ASSERT_EQ(dy.size(), 1u);
-  EXPECT_TRUE(touchcloud::test::mentions(dy[0], "parameter 'workspace_y_mm': the workspace is empty")) << dy[0].str();
-  EXPECT_EQ(dy[0].where.line, 4);
+  // Along x with max equal to min, along y with max below min.
+  for (const std::string& bad : {std::string("workspace_x_mm: [10, 10]"), std::string("workspace_y_mm: [20, 10]")}) {
+    const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {" + bad + "}\n");
+    ASSERT_EQ(d.size(), 1u) << bad;
+    const std::string parameter = bad.substr(0, bad.find(':'));
+    EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter '" + parameter + "': the workspace is empty")) << d[0].str();
+    EXPECT_EQ(d[0].where.line, 4) << bad;
+  }
 }

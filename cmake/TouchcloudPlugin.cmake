@@ -18,7 +18,7 @@ function(touchcloud_add_plugin name)
   endif()
   set(target touchcloud_${name})
   add_library(${target} MODULE ${ARG_SOURCES})
-  target_link_libraries(${target} PRIVATE touchcloud::core ${ARG_LINK})
+  target_link_libraries(${target} PRIVATE touchcloud::sensing ${ARG_LINK})
   set_target_properties(${target} PROPERTIES PREFIX "" CXX_VISIBILITY_PRESET hidden
                         VISIBILITY_INLINES_HIDDEN ON)
   if(ARG_OUTPUT_DIRECTORY)

@@ -1,8 +1,6 @@
 #include "run_summary.hpp"
 
-#include <boost/version.hpp>
-#include <Eigen/Core>
-#include <pcl/pcl_config.h>
+#include "touchcloud/library_versions.hpp"
 
 namespace touchcloud {
 
@@ -12,24 +10,12 @@ nlohmann::json to_json(const ParamValue& v) {
 }
 }  // namespace
 
-nlohmann::json library_versions() {
-  return {
-      {"touchcloud", kVersion},
-      {"plugin_abi", kPluginAbiVersion},
-      {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
-                    std::to_string(EIGEN_MINOR_VERSION)},
-      {"pcl", PCL_VERSION_PRETTY},
-      {"boost", std::to_string(BOOST_VERSION / 100000) + "." + std::to_string(BOOST_VERSION / 100 % 1000) + "." +
-                    std::to_string(BOOST_VERSION % 100)},
-      {"compiler", __VERSION__},
-  };
-}
-
 nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& result, const RunOptions& options) {
   nlohmann::json j;
   j["pipeline"] = {{"name", pipeline.name}, {"file", pipeline.file.string()}};
   j["seed"] = options.seed;
   j["versions"] = library_versions();
+  j["versions"]["plugin_abi"] = kPluginAbiVersion;
   j["wall_time_s"] = result.wall_time_s;
   j["load_time_s"] = result.load_time_s;
 

@@ -8,7 +8,5 @@
 namespace touchcloud {
 
 nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& result, const RunOptions& options);
-// Library versions the toolkit was built with ("eigen" -> "3.4.0", ...).
-nlohmann::json library_versions();
 
 }  // namespace touchcloud

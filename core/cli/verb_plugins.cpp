@@ -14,7 +14,10 @@ namespace {
 nlohmann::json param_json(const ParamSpec& p) {
   nlohmann::json j = {{"name", p.name}, {"type", to_string(p.type)}, {"unit", p.unit}, {"doc", p.doc},
                       {"rule", p.rule()}};
-  std::visit([&j](const auto& v) { j["default"] = v; }, p.default_value);
+  if (p.default_value) std::visit([&j](const auto& v) { j["default"] = v; }, *p.default_value);
+  else j["default"] = nullptr;  // "not set": the stage decides (its doc says how)
+  if (p.optional) j["optional"] = true;
+  if (!p.needs_feature.empty()) j["needs"] = {{"feature", p.needs_feature}, {"available", p.feature_available}};
   if (p.min) j["min"] = {{"value", *p.min}, {"exclusive", p.min_exclusive}};
   if (p.max) j["max"] = {{"value", *p.max}, {"exclusive", p.max_exclusive}};
   if (!p.choices.empty()) j["choices"] = p.choices;
@@ -45,8 +48,11 @@ void print_parameter(const ParamSpec& p) {
   if (p.path_role == PathRole::InputFile) type = "input file";
   if (p.path_role == PathRole::OutputFile) type = "output file";
   std::cout << "    " << std::left << std::setw(22) << p.name << " " << std::setw(15) << type
-            << " default " << format_value(p.default_value) << (p.unit.empty() ? "" : " " + p.unit);
+            << (p.default_value ? " default " + format_value(*p.default_value) : std::string(" not set"))
+            << (p.unit.empty() ? "" : " " + p.unit);
   if (!p.rule().empty()) std::cout << "; " << p.rule();
+  if (!p.needs_feature.empty())
+    std::cout << "; needs " << p.needs_feature << (p.feature_available ? "" : " (not in this build)");
   std::cout << "\n" << std::string(28, ' ') << p.doc << "\n";
 }
 

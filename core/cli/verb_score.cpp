@@ -203,18 +203,11 @@ nlohmann::ordered_json outcome_json(const Outcome& r, const Options& o) {
   nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
   for (const auto& m : r.score->to_score().metrics) metrics[m.name + (m.unit.empty() ? "" : "_" + m.unit)] = m.value;
   j["metrics"] = metrics;
+  if (r.score->metrics.fscore) j["fscore_threshold_mm"] = r.score->fscore_threshold_mm;
   j["time_s"] = r.time_s;
   return j;
 }
 
-// Column titles for the metrics in Score order.
-std::string column_title(const Metric& m) {
-  if (m.name == "chamfer_est_to_gt") return "est->gt mm";
-  if (m.name == "chamfer_gt_to_est") return "gt->est mm";
-  if (m.name == "chamfer_symmetric") return "symmetric mm";
-  if (m.name == "hausdorff") return "hausdorff mm";
-  return m.name;
-}
 
 void print_table(const std::vector<Outcome>& outcomes, const std::vector<const GroundTruthSummary*>& gts,
                  const Options& o, const scoring::ScoreOptions& options) {
@@ -237,11 +230,10 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
   scoring::CloudScore shape;
   shape.metrics = options.metrics;
   std::vector<std::string> titles;
-  for (const auto& m : shape.to_score().metrics) {
-    if (m.name == "fscore_threshold") continue;
-    titles.push_back(m.name == "fscore" ? "F@" + format_fixed(options.fscore_threshold_mm, 2) + "mm"
-                                        : column_title(m));
-  }
+  for (const auto& m : scoring::metric_names())
+    if (shape.metrics.*m.selected)
+      titles.push_back(m.value == &scoring::CloudScore::fscore
+                           ? "F@" + format_fixed(options.fscore_threshold_mm, 2) + "mm" : m.column);
   std::cout << std::left << std::setw(static_cast<int>(name_width)) << "estimate";
   if (show_gt) std::cout << "  " << std::setw(static_cast<int>(gt_width)) << "ground truth";
   std::cout << std::right << std::setw(10) << "points";
@@ -256,8 +248,7 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
       continue;
     }
     std::cout << std::right << std::setw(10) << r.score->estimate_points;
-    for (const auto& m : r.score->to_score().metrics)
-      if (m.name != "fscore_threshold") std::cout << std::setw(14) << format_fixed(m.value, 3);
+    for (const auto& m : r.score->to_score().metrics) std::cout << std::setw(14) << format_fixed(m.value, 3);
     std::cout << "\n";
   }
 }

@@ -84,7 +84,7 @@ struct ResolvedStage {
   std::unique_ptr<Stage> stage;
   std::unique_ptr<ParameterSet> params;  // bound to *stage
   std::unique_ptr<PortSet> ports;
-  std::map<std::string, ParamValue> values;           // every parameter, defaults included
+  std::map<std::string, ParamValue> values;           // every parameter with a value, defaults included
   std::map<std::string, SourceLocation> param_where;  // those set in the file or by --set
   std::vector<ResolvedInput> inputs;
   std::set<std::string> wanted_outputs;  // read by some stage or a loop's `until`

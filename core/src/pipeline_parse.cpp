@@ -235,7 +235,8 @@ std::optional<ParamValue> convert_param(const ParamSpec& spec, const YAML::Node&
       error = "expected a number, got '" + (scalar ? s : std::string("a list or mapping")) + "'";
       return std::nullopt;
     }
-    case ParamType::String: {
+    case ParamType::String:
+    case ParamType::Choice: {
       if (scalar) return ParamValue(s);
       error = "expected a string, got a list or mapping";
       return std::nullopt;
@@ -254,6 +255,23 @@ std::optional<ParamValue> convert_param(const ParamSpec& spec, const YAML::Node&
           return std::nullopt;
         }
         list.push_back(d);
+      }
+      return ParamValue(list);
+    }
+    case ParamType::IntList: {
+      if (!value.IsSequence()) {
+        error = "expected a list of whole numbers like [14, 14], got '" + (scalar ? s : std::string("a mapping")) + "'";
+        return std::nullopt;
+      }
+      std::vector<std::int64_t> list;
+      for (const auto& item : value) {
+        std::int64_t i = 0;
+        if (!item.IsScalar() || !parse_number(item.Scalar(), i)) {
+          error = "expected a list of whole numbers, but element " + std::to_string(list.size()) + " is '" +
+                  (item.IsScalar() ? item.Scalar() : std::string("not a number")) + "'";
+          return std::nullopt;
+        }
+        list.push_back(i);
       }
       return ParamValue(list);
     }

@@ -150,7 +150,8 @@ class Resolver {
     s->params = std::make_unique<ParameterSet>();
     s->ports = std::make_unique<PortSet>();
     s->stage->declare(*s->params, *s->ports);
-    for (const auto& spec : s->params->specs()) s->values[spec.name] = spec.default_value;
+    for (const auto& spec : s->params->specs())
+      if (spec.default_value) s->values[spec.name] = *spec.default_value;
 
     const std::string who = "stage '" + n.id + "' (plugin " + n.plugin + ")";
     std::vector<std::string> names;
@@ -160,6 +161,12 @@ class Resolver {
       if (!spec) {
         error(p.where, who + " has no parameter '" + p.name + "'" + did_you_mean(p.name, names) +
                            " (see `touchcloud plugins " + n.plugin + "`)");
+        continue;
+      }
+      if (spec->optional && (!p.value || p.value.IsNull())) {  // `name: ~` leaves it "not set"
+        s->params->unset(p.name);
+        s->values.erase(p.name);
+        s->param_where[p.name] = p.where;
         continue;
       }
       std::string why;
@@ -179,7 +186,7 @@ class Resolver {
     }
     // An input file has no usable default: the pipeline must name one.
     for (const auto& spec : s->params->specs())
-      if (spec.path_role == PathRole::InputFile &&
+      if (spec.path_role == PathRole::InputFile && !spec.optional &&
           std::none_of(n.params.begin(), n.params.end(), [&](const ParamDoc& p) { return p.name == spec.name; }))
         error(n.where, who + ": parameter '" + spec.name + "' names an input file and must be set");
     return s;

@@ -88,10 +88,9 @@ class Runner {
     OutputStaging staging(options_.out_dir);
     RunRecord& record = pipeline_.record;
     record = RunRecord{};
-    record.staging_dir = staging.dir();
-    record.quiet = options_.quiet;
+    const RunSettings settings{staging.dir(), options_.quiet};
     for (auto* s : pipeline_.stages) {
-      s->context = std::make_unique<RunContext>(s->id, options_.seed, record);
+      s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays
       s->iteration = -1;
     }
@@ -239,40 +238,8 @@ class Runner {
 
 }  // namespace
 
-Override parse_override(const std::string& text) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InputError("--set '" + text + "' must be STAGE.PARAM=VALUE");
-  return {text.substr(0, eq), text.substr(eq + 1)};
-}
-
-Pipeline::Pipeline(std::unique_ptr<ResolvedPipeline> impl) : impl_(std::move(impl)) {}
-Pipeline::Pipeline(Pipeline&&) noexcept = default;
-Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
-Pipeline::~Pipeline() = default;
-
-Pipeline Pipeline::load(const fs::path& file, const std::vector<Override>& overrides, PluginRegistry& registry) {
-  const auto t0 = Clock::now();
-  std::vector<Diagnostic> diagnostics;
-  PipelineDoc doc = parse_pipeline(file, diagnostics);
-  if (!diagnostics.empty()) throw InputError(diagnostics);
-  auto resolved = resolve_pipeline(std::move(doc), overrides, registry);
-  resolved->load_time_s = seconds_since(t0);
-  return Pipeline(std::move(resolved));
-}
-
-const std::string& Pipeline::name() const { return impl_->name; }
-const fs::path& Pipeline::file() const { return impl_->file; }
-
-std::map<std::string, std::map<std::string, ParamValue>> Pipeline::parameters() const {
-  std::map<std::string, std::map<std::string, ParamValue>> out;
-  for (const auto* s : impl_->stages) out[s->id] = s->values;
-  for (const auto* l : impl_->loops) out[l->id]["max_iterations"] = static_cast<std::int64_t>(l->max_iterations);
-  return out;
-}
-
 RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options) {
-  return Runner(pipeline.resolved(), options).run();
+  return Runner(*pipeline.impl_, options).run();
 }
 
 }  // namespace touchcloud

@@ -28,8 +28,8 @@ std::uint64_t stable_hash(const std::string& text) {
 std::mutex record_mutex;
 }  // namespace
 
-RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record)
-    : stage_id_(std::move(stage_id)), seed_(run_seed), record_(record) {
+RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record, RunSettings settings)
+    : stage_id_(std::move(stage_id)), seed_(run_seed), record_(record), settings_(std::move(settings)) {
   std::seed_seq seq{static_cast<std::uint32_t>(run_seed), static_cast<std::uint32_t>(run_seed >> 32),
                     static_cast<std::uint32_t>(stable_hash(stage_id_)),
                     static_cast<std::uint32_t>(stable_hash(stage_id_) >> 32)};
@@ -50,15 +50,20 @@ void RunContext::note(const std::string& name, const std::string& text) {
   record_.notes[stage_id_ + "." + name] = text;
 }
 
+void RunContext::used(const std::string& name, const ParamValue& value) {
+  std::lock_guard<std::mutex> lock(record_mutex);
+  record_.used[stage_id_][name] = value;
+}
+
 std::filesystem::path RunContext::output_path(const std::string& file_name) {
-  if (record_.staging_dir.empty())
+  if (settings_.staging_dir.empty())
     throw InputError("stage '" + stage_id_ + "' writes '" + file_name +
                      "' but this run has no output folder (use --out DIR)");
   const std::filesystem::path rel(file_name);
   if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0)
     throw ParameterError("path", "output file '" + file_name + "' must stay inside the output folder");
   std::lock_guard<std::mutex> lock(record_mutex);
-  const auto path = record_.staging_dir / rel.lexically_normal();
+  const auto path = settings_.staging_dir / rel.lexically_normal();
   std::filesystem::create_directories(path.parent_path());
   const std::string name = rel.lexically_normal().string();
   bool known = false;
@@ -68,7 +73,7 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
 }
 
 void RunContext::log(const std::string& message) const {
-  if (record_.quiet) return;
+  if (settings_.quiet) return;
   std::ostringstream line;
   line << "[" << stage_id_ << "] " << message << "\n";
   std::lock_guard<std::mutex> lock(record_mutex);

@@ -21,14 +21,34 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
 
   nlohmann::json stages = nlohmann::json::array();
   for (const auto* s : pipeline.stages) {
+    // Each parameter as used: the value a stage chose for one left "not
+    // set" (RunContext::used), else the value set or the default.
+    const auto used = result.record.used.find(s->id);
+    const auto chosen = [&](const std::string& name) -> const ParamValue* {
+      if (used == result.record.used.end()) return nullptr;
+      auto it = used->second.find(name);
+      return it == used->second.end() ? nullptr : &it->second;
+    };
     nlohmann::json params = nlohmann::json::object();
-    for (const auto& [name, value] : s->values) params[name] = to_json(value);
+    for (const auto& spec : s->params->specs()) {
+      const auto value = s->values.find(spec.name);
+      if (const ParamValue* v = chosen(spec.name); v && value == s->values.end()) params[spec.name] = to_json(*v);
+      else if (value != s->values.end()) params[spec.name] = to_json(value->second);
+      else params[spec.name] = nullptr;
+    }
     nlohmann::json stage = {{"id", s->id},
                             {"plugin", s->plugin->name()},
                             {"plugin_built_for", s->plugin->toolkit_version()},
                             {"library", s->plugin->library().string()},
                             {"params", params}};
     if (s->background) stage["background"] = true;
+    // What else the stage reports it used (a build's backend, its threads).
+    if (used != result.record.used.end()) {
+      nlohmann::json other = nlohmann::json::object();
+      for (const auto& [name, value] : used->second)
+        if (!s->params->find(name)) other[name] = to_json(value);
+      if (!other.empty()) stage["used"] = other;
+    }
     for (const auto& t : result.timings)
       if (t.id == s->id)
         stage["time_s"] = {{"check", t.check_s}, {"configure", t.configure_s}, {"process", t.process_s},

@@ -16,7 +16,8 @@ namespace touchcloud {
 
 class Chamfer final : public Stage {
   std::string ground_truth_, metrics_;
-  std::int64_t samples_ = 0, sample_seed_ = 0;
+  std::optional<std::int64_t> samples_;
+  std::int64_t sample_seed_ = 0;
   double fscore_threshold_mm_ = scoring::kDefaultFscoreThresholdMm;
   std::optional<scoring::GroundTruthFile> file_;  // from check until configure indexes it
   std::optional<scoring::GroundTruth> gt_;
@@ -26,10 +27,10 @@ class Chamfer final : public Stage {
     p.add("ground_truth", ground_truth_, std::string())
         .input_file()
         .doc("mesh (.stl, .obj, .ply with faces; sampled uniformly by area) or cloud (.pcd, .ply), mm");
-    p.add("samples", samples_, std::int64_t{0})
-        .at_least(0)
+    p.add("samples", samples_)
+        .at_least(1)
         .unit("points")
-        .doc("points sampled from a mesh; 0: 100 per mm^2 of surface (0.1 mm spacing), see docs/scoring.md");
+        .doc("points sampled from a mesh; not set: 100 per mm^2 of surface (0.1 mm spacing), see docs/scoring.md");
     p.add("sample_seed", sample_seed_, std::int64_t{0})
         .at_least(0)
         .doc("seed of the mesh sampling; fixed apart from the run seed so every run meets the same ground truth");
@@ -48,7 +49,7 @@ class Chamfer final : public Stage {
 
   scoring::GroundTruthOptions ground_truth_options() const {
     scoring::GroundTruthOptions o;
-    o.mesh_samples = static_cast<std::size_t>(samples_);
+    o.mesh_samples = static_cast<std::size_t>(samples_.value_or(0));  // 0: by area
     o.seed = static_cast<std::uint64_t>(sample_seed_);
     return o;
   }
@@ -73,13 +74,14 @@ class Chamfer final : public Stage {
   // A run indexes once and scores every item against the same points.
   void on_configure(RunContext& ctx) override {
     if (gt_) return;
-    if (!file_) on_check(ctx);
     try {
       gt_.emplace(scoring::index_ground_truth(std::move(*file_), ground_truth_options()));
     } catch (const InputError& e) {
       throw ParameterError("ground_truth", e.what());
     }
     file_.reset();
+    if (!samples_ && gt_->kind == scoring::GroundTruthKind::Mesh)
+      ctx.used("samples", static_cast<std::int64_t>(gt_->points.size()));
     std::ostringstream what;
     what << gt_->points.size() << " ground-truth points from " << ground_truth_;
     if (gt_->kind == scoring::GroundTruthKind::Mesh)
@@ -104,8 +106,7 @@ class Chamfer final : public Stage {
       last_estimate_ = std::move(estimate);
     }
     Score score = last_result_.to_score();
-    for (const auto& m : score.metrics)
-      if (m.name != "fscore_threshold") ctx.metric(m.name, m.value, m.unit);  // a parameter, not a result
+    for (const auto& m : score.metrics) ctx.metric(m.name, m.value, m.unit);
     if (const Metric* eq11 = score.find("chamfer_est_to_gt")) history_.push_back(eq11->value);
     io.output("score", std::move(score));
   }

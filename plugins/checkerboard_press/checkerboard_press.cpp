@@ -7,16 +7,19 @@
 
 #include "board/board_press.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/sensor/sensor_parameters.hpp"
 
 namespace touchcloud {
 
 class CheckerboardPress final : public Stage {
-  std::string sensor_file_;
-  std::vector<double> board_corners_, presses_, depth_range_mm_;
+  sensor::SensorParameters sensor_;
+  std::array<int, 2> board_corners_{};
+  std::vector<double> presses_;
+  std::array<double, 2> depth_range_mm_{};
   double square_mm_ = 4, max_tilt_deg_ = 25, noise_px_ = 0.1, min_height_mm_ = 0.5;
   int random_presses_ = 12;
-  bool lens_distortion_ = true;
+
+  sensor::GelStereoSensor sensor_read_;  // the true sensor, read at check
 
   std::unique_ptr<optics::StereoRig> rig_;
   Eigen::Isometry3d left_from_sensor_ = Eigen::Isometry3d::Identity();
@@ -26,9 +29,8 @@ class CheckerboardPress final : public Stage {
   std::size_t next_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("sensor", sensor_file_, std::string()).input_file()
-        .doc("the TRUE sensor: a scene or sensor file with a 'sensor:' section");
-    p.add("board_corners", board_corners_, std::vector<double>{8, 6}).size(2).range(2, 100)
+    sensor_.declare(p, "the TRUE sensor: a scene or sensor file with a 'sensor:' section");
+    p.add("board_corners", board_corners_, std::array<int, 2>{8, 6}).range(2, 100)
         .doc("inner corners of the board [cols, rows]");
     p.add("square_mm", square_mm_, 4.0).unit("mm").above(0).doc("edge of one board square");
     p.add("presses", presses_, std::vector<double>{}).doc(
@@ -37,13 +39,19 @@ class CheckerboardPress final : public Stage {
         .doc("number of seeded random presses when 'presses' is empty");
     p.add("max_tilt_deg", max_tilt_deg_, 25.0).unit("deg").range(0, 60)
         .doc("largest board tilt of the random presses (uniform in [0, max])");
-    p.add("depth_range_mm", depth_range_mm_, std::vector<double>{4, 10}).unit("mm").size(2).above(0)
+    p.add("depth_range_mm", depth_range_mm_, std::array<double, 2>{4, 10}).unit("mm").above(0)
         .doc("[min, max] press depth of the random presses, into the gel hemisphere");
     p.add("noise_px", noise_px_, 0.1).unit("px").at_least(0).doc("Gaussian corner noise, sigma per coordinate");
     p.add("min_height_mm", min_height_mm_, 0.5).unit("mm").at_least(0)
         .doc("corners closer than this to the gel face are dropped (not pressed into the gel)");
-    p.add("lens_distortion", lens_distortion_, false)
-        .doc("image through the cameras' distortion (the calibration stage must agree)");
+    p.rule({"depth_range_mm"}, [this]() -> std::optional<std::string> {
+      if (depth_range_mm_[0] <= depth_range_mm_[1]) return std::nullopt;
+      return "must be [min, max] with min <= max";
+    });
+    p.rule({"presses"}, [this]() -> std::optional<std::string> {
+      if (presses_.size() % 3 == 0) return std::nullopt;
+      return "has " + std::to_string(presses_.size()) + " numbers; give [tilt_x_deg, tilt_y_deg, depth_mm] per press";
+    });
   }
 
   void declare_ports(PortSet& ports) override {
@@ -53,12 +61,8 @@ class CheckerboardPress final : public Stage {
 
   void on_check(RunContext&) override {
     board_ = sensor::Checkerboard::from_parameters(board_corners_, square_mm_);
-    if (presses_.size() % 3 != 0)
-      throw ParameterError("presses", "has " + std::to_string(presses_.size()) +
-                                          " numbers; give [tilt_x_deg, tilt_y_deg, depth_mm] per press");
-    if (!(depth_range_mm_[0] <= depth_range_mm_[1]))
-      throw ParameterError("depth_range_mm", "must be [min, max] with min <= max");
-    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
+    sensor_read_ = sensor_.load(true);
+    const auto& sensor = sensor_read_;
     for (std::size_t i = 0; i + 2 < presses_.size(); i += 3) {
       const double depth = presses_[i + 2];
       if (std::abs(presses_[i]) >= 90 || std::abs(presses_[i + 1]) >= 90 || !(depth > 0) ||
@@ -71,9 +75,8 @@ class CheckerboardPress final : public Stage {
   }
 
   void on_configure(RunContext& ctx) override {
-    on_check(ctx);
-    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
-    rig_ = std::make_unique<optics::StereoRig>(sensor::make_stereo_rig(sensor, true, lens_distortion_));
+    const auto& sensor = sensor_read_;
+    rig_ = std::make_unique<optics::StereoRig>(sensor_.rig(sensor, true));
     left_from_sensor_ = sensor.sensor_from_left_camera().inverse();
     gel_radius_mm_ = sensor.gel.radius_mm();
     poses_.clear();

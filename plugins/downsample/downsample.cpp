@@ -13,13 +13,14 @@
 namespace touchcloud {
 
 class Downsample final : public Stage {
-  std::string method_;
+  enum class Method { Voxel, Random };
+  Method method_ = Method::Voxel;
   double leaf_size_mm_ = 1.0;
   double keep_ratio_ = 0.25;
   std::size_t points_in_ = 0, points_out_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("method", method_, std::string("voxel")).choices({"voxel", "random"}).doc("how to thin the cloud");
+    p.add("method", method_, Method::Voxel, {{"voxel", Method::Voxel}, {"random", Method::Random}}).doc("how to thin the cloud");
     p.add("leaf_size_mm", leaf_size_mm_, 1.0).unit("mm").above(0.0).doc("voxel edge length (method voxel)");
     p.add("keep_ratio", keep_ratio_, 0.25).range(0.0, 1.0).doc("fraction of points kept (method random)");
   }
@@ -62,7 +63,7 @@ class Downsample final : public Stage {
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& in = io.input<CloudConstPtr>("cloud");
     if (!in || in->empty()) throw RunError("the input cloud is empty");
-    CloudConstPtr out = method_ == "voxel" ? voxel(in) : random(in, ctx);
+    CloudConstPtr out = method_ == Method::Voxel ? voxel(in) : random(in, ctx);
     points_in_ += in->size();
     points_out_ += out->size();
     io.output("cloud", out);

@@ -29,7 +29,9 @@
 namespace touchcloud {
 
 class GpSurface final : public Stage {
-  std::string kernel_, method_;
+  enum class Method { Exact, Sparse };
+  gp::KernelKind kernel_ = gp::KernelKind::rbf;
+  Method method_ = Method::Exact;
   int inducing_points_ = 500;
   int selection_points_ = 0;
   int selection_runs_ = 8;
@@ -37,7 +39,7 @@ class GpSurface final : public Stage {
   int screening_points_ = 500;
   double initial_lengthscale_mm_ = 10.0;
   double max_noise_mm_ = 1.0;
-  int blas_threads_ = 0;
+  std::optional<int> blas_threads_;
 
   Eigen::MatrixX2d xy_{0, 2};
   Eigen::VectorXd z_;
@@ -50,8 +52,9 @@ class GpSurface final : public Stage {
   int selections_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("kernel", kernel_, std::string("rbf")).choices({"rbf", "matern52"}).doc("covariance function");
-    p.add("method", method_, std::string("exact")).choices({"exact", "sparse"})
+    p.add("kernel", kernel_, gp::KernelKind::rbf, {{"rbf", gp::KernelKind::rbf}, {"matern52", gp::KernelKind::matern52}})
+        .doc("covariance function");
+    p.add("method", method_, Method::Exact, {{"exact", Method::Exact}, {"sparse", Method::Sparse}})
         .doc("exact GP, or the sparse VFE approximation on inducing points");
     p.add("inducing_points", inducing_points_, 500).at_least(1).unit("points")
         .doc("method sparse: inducing points, a farthest-point subset of the touches (all when fewer)");
@@ -69,11 +72,15 @@ class GpSurface final : public Stage {
     p.add("max_noise_mm", max_noise_mm_, 1.0).unit("mm").above(0.0)
         .doc("largest noise standard deviation model selection may choose (touch points are accurate to a few "
              "tenths of a mm); keeps few or rough points from being explained as noise around a flat mean");
-    p.add("blas_threads", blas_threads_, 0).at_least(0).unit("threads")
-        .doc("threads of the factorisations and solves (OpenBLAS: one count for the whole process); 0: "
+    p.add("blas_threads", blas_threads_).at_least(1).unit("threads").needs("OpenBLAS", gp::factor_algebra_threads_settable())
+        .doc("threads of the factorisations and solves (OpenBLAS: one count for the whole process); not set: "
              "OpenBLAS's own, a thread per core; 1 leaves the other cores to background stages");
   }
-  void on_configure(RunContext&) override { gp::set_factor_algebra_threads(blas_threads_); }
+  void on_configure(RunContext& ctx) override {
+    gp::set_factor_algebra_threads(blas_threads_.value_or(0));
+    ctx.used("blas_threads", static_cast<std::int64_t>(gp::factor_algebra_threads()));
+    ctx.used("dense_algebra", std::string(gp::factor_algebra_backend()));
+  }
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.output<SurfaceModelPtr>("surface", "the fitted surface");
@@ -103,7 +110,7 @@ class GpSurface final : public Stage {
   // (with the last selection's curvature) after the first.
   void select(RunContext& ctx) {
     gp::SearchOptions options;
-    options.kernel = gp::kernel_kind_from_string(kernel_);
+    options.kernel = kernel_;
     options.screening_points = screening_points_;
     options.bounds.noise_sd_max = max_noise_mm_;
     options.stop_gain = 1e-6;  // hyperparameters to ~0.1 %: the surface cannot tell them apart
@@ -113,7 +120,7 @@ class GpSurface final : public Stage {
     }
     const auto started = std::chrono::steady_clock::now();
     const Eigen::Index n = xy_.rows();
-    const Eigen::Index limit = selection_points_ > 0 ? selection_points_ : (method_ == "sparse" ? inducing_points_ : n);
+    const Eigen::Index limit = selection_points_ > 0 ? selection_points_ : (method_ == Method::Sparse ? inducing_points_ : n);
     // Runs of consecutive points (parts of single touches) spread evenly
     // over the data keep the touches' point density (gp/point_subset.hpp).
     const auto [sub_xy, sub_z] = gp::subset_of_runs(xy_, z_, limit, selection_runs_);
@@ -132,7 +139,7 @@ class GpSurface final : public Stage {
   }
 
   void fit_exact(const gp::Hyperparameters& h) {
-    auto model = std::make_shared<gp::ExactGp>(gp::kernel_kind_from_string(kernel_), h);
+    auto model = std::make_shared<gp::ExactGp>(kernel_, h);
     model->fit(xy_, z_);
     gp_ = model;
   }
@@ -143,7 +150,7 @@ class GpSurface final : public Stage {
     const std::vector<Eigen::Index> rows = gp::farthest_point_subset(xy_, inducing_points_, first);
     Eigen::MatrixX2d inducing(static_cast<Eigen::Index>(rows.size()), 2);
     for (std::size_t i = 0; i < rows.size(); ++i) inducing.row(static_cast<Eigen::Index>(i)) = xy_.row(rows[i]);
-    auto model = std::make_shared<gp::SparseVfeGp>(gp::kernel_kind_from_string(kernel_), h);
+    auto model = std::make_shared<gp::SparseVfeGp>(kernel_, h);
     model->fit(xy_, z_, inducing);
     ctx.metric("inducing_points", static_cast<double>(inducing.rows()), "points");
     ctx.metric("vfe_bound", model->log_marginal_likelihood_bound());
@@ -168,9 +175,9 @@ class GpSurface final : public Stage {
     } else if (selected_at_ == 0 || static_cast<double>(n) >= (1.0 + reselect_growth_) * static_cast<double>(selected_at_)) {
       select(ctx);
       h = last_;
-      if (method_ == "exact") fit_exact(h);
+      if (method_ == Method::Exact) fit_exact(h);
       path = 3;
-    } else if (method_ == "exact" && n > n0) {
+    } else if (method_ == Method::Exact && n > n0) {
       auto model = std::make_shared<gp::ExactGp>(*gp_);  // shares the factor; the previous output stays as it was
       const gp::UpdateReport report = model->add_points(xy_.bottomRows(n - n0), z_.tail(n - n0));
       path = report.path == gp::UpdatePath::bordered ? 1 : 2;
@@ -178,7 +185,7 @@ class GpSurface final : public Stage {
       gp_ = model;
     }
     SurfaceModelPtr surface;
-    if (method_ == "sparse" && n > 0) {
+    if (method_ == Method::Sparse && n > 0) {
       if (n > n0 || !sparse_) sparse_ = fit_sparse(h, ctx);
       surface = sparse_;
     } else {

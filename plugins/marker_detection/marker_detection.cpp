@@ -9,7 +9,7 @@
 namespace touchcloud {
 
 class MarkerDetection final : public Stage {
-  std::string polarity_;
+  MarkerPolarity polarity_ = MarkerPolarity::Dark;
   std::vector<double> diameter_px_;
   double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0;
   int background_window_px_ = 0;
@@ -17,8 +17,7 @@ class MarkerDetection final : public Stage {
 
   void declare_parameters(ParameterSet& p) override {
     const MarkerDetectorOptions d;
-    p.add("polarity", polarity_, std::string("dark"))
-        .choices({"dark", "bright"})
+    p.add("polarity", polarity_, MarkerPolarity::Dark, {{"dark", MarkerPolarity::Dark}, {"bright", MarkerPolarity::Bright}})
         .doc("dots darker than the gel around them (GelStereo), or brighter");
     p.add("diameter_px", diameter_px_, std::vector<double>{d.min_diameter_px, d.max_diameter_px})
         .unit("px")
@@ -54,7 +53,7 @@ class MarkerDetection final : public Stage {
 
   void on_configure(RunContext&) override {
     MarkerDetectorOptions o;
-    o.polarity = polarity_ == "bright" ? MarkerPolarity::Bright : MarkerPolarity::Dark;
+    o.polarity = polarity_;
     o.min_diameter_px = diameter_px_.at(0);
     o.max_diameter_px = diameter_px_.at(1);
     o.contrast_grey = contrast_grey_;

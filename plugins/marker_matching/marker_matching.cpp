@@ -5,14 +5,14 @@
 
 #include "stereo_tracker.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/sensor/sensor_parameters.hpp"
 
 namespace touchcloud {
 
 class MarkerMatching final : public Stage {
-  std::string sensor_file_;
-  bool lens_distortion_ = false;
+  sensor::SensorParameters sensor_;
   matching::TrackerGates gates_;
+  sensor::GelStereoSensor sensor_read_;  // read at check
 
   std::unique_ptr<matching::StereoMarkerTracker> tracker_;
   std::size_t frames_ = 0;
@@ -20,9 +20,7 @@ class MarkerMatching final : public Stage {
   double matched_sum_ = 0, left_only_sum_ = 0, right_only_sum_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("sensor", sensor_file_, std::string()).input_file()
-        .doc("sensor description: a scene or sensor file with a 'sensor:' section (cameras, plate, gel)");
-    p.add("lens_distortion", lens_distortion_, false).doc("apply the sensor file's lens distortion coefficients");
+    sensor_.declare(p, "sensor description: a scene or sensor file with a 'sensor:' section (cameras, plate, gel)");
     p.add("match_gate_px", gates_.match_gate_px, 4.0).unit("px").above(0.0)
         .doc("reference frame: a right marker pairs with a left one within this distance of its predicted pixel");
     p.add("track_gate_px", gates_.track_gate_px, 6.0).unit("px").above(0.0)
@@ -38,14 +36,12 @@ class MarkerMatching final : public Stage {
     ports.output<MarkerSetPtr>("markers", "the same markers with ids, and the left/right pairs");
   }
 
-  void on_check(RunContext&) override {
-    sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
-  }
+  void on_check(RunContext&) override { sensor_read_ = sensor_.load(true); }
 
   void on_configure(RunContext&) override {
-    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
+    const auto& sensor = sensor_read_;
     tracker_ = std::make_unique<matching::StereoMarkerTracker>(
-        matching::RestingGelMatcher(sensor::make_stereo_rig(sensor, true, lens_distortion_),
+        matching::RestingGelMatcher(sensor_.rig(sensor, true),
                                     sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()),
         gates_);
   }

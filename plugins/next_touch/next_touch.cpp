@@ -1,13 +1,14 @@
 // next_touch: chooses the next sampling position from the surface model.
 #include "touch_choice.hpp"
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/types/workspace_parameters.hpp"
 
 namespace touchcloud {
 
 class NextTouch final : public Stage {
-  std::vector<double> x_mm_, y_mm_;
-  std::vector<double> cells_;
-  std::string strategy_;
+  enum class Strategy { MaxVariance, Random };
+  WorkspaceParameters workspace_;
+  Strategy strategy_ = Strategy::MaxVariance;
   int initial_random_ = 4;
   int oversample_ = 1;
   bool revisit_ = false;
@@ -16,11 +17,8 @@ class NextTouch final : public Stage {
   int calls_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("workspace_x_mm", x_mm_, std::vector<double>{0, 100}).unit("mm").size(2).doc("workspace [min, max] along x, base frame");
-    p.add("workspace_y_mm", y_mm_, std::vector<double>{0, 100}).unit("mm").size(2).doc("workspace [min, max] along y, base frame");
-    p.add("grid", cells_, std::vector<double>{14, 14}).size(2).range(1, 1000).doc("sampling grid cells along x and y");
-    p.add("strategy", strategy_, std::string("max_variance"))
-        .choices({"max_variance", "random"})
+    workspace_.declare(p, true);
+    p.add("strategy", strategy_, Strategy::MaxVariance, {{"max_variance", Strategy::MaxVariance}, {"random", Strategy::Random}})
         .doc("greatest posterior variance (Eq. 10), or a random cell (the w/o SSG baseline)");
     p.add("initial_random", initial_random_, 4).at_least(1).unit("touches").doc("random touches before the model chooses");
     p.add("oversample", oversample_, 1).range(1, 16).doc("variance candidates per grid cell and axis (snapped to the cell)");
@@ -33,21 +31,13 @@ class NextTouch final : public Stage {
     ports.optional_input<SurfaceModelPtr>("surface", "the model fitted so far (wire as fit.surface@previous)");
     ports.output<TouchTarget>("target", "the next touch position, base frame");
   }
-  void on_check(RunContext&) override {
-    grid_.x_mm = {x_mm_[0], x_mm_[1]};
-    grid_.y_mm = {y_mm_[0], y_mm_[1]};
-    for (double c : cells_)
-      if (c != std::floor(c)) throw ParameterError("grid", "cell counts must be whole numbers");
-    grid_.cells_x = static_cast<int>(cells_[0]);
-    grid_.cells_y = static_cast<int>(cells_[1]);
-    grid_.validate("workspace_x_mm", "workspace_y_mm", "grid");
-  }
-  void on_configure(RunContext& ctx) override { on_check(ctx); }
+  void on_check(RunContext&) override { grid_ = workspace_.resolve(); }
+  void on_configure(RunContext& ctx) override { workspace_.record_used(grid_, ctx); }
 
   void on_process(StageIO& io, RunContext& ctx) override {
     const SurfaceModelPtr* surface = io.optional_input<SurfaceModelPtr>("surface");
     TouchTarget target;
-    if (calls_ < initial_random_ || strategy_ == "random" || !surface || !*surface) {
+    if (calls_ < initial_random_ || strategy_ == Strategy::Random || !surface || !*surface) {
       target.grid_index = random_cell(grid_, touched_, ctx.rng());
     } else {
       const VarianceChoice choice = max_variance_cell(**surface, grid_, oversample_, revisit_ ? std::set<int>{} : touched_);

@@ -8,33 +8,35 @@
 
 #include "calibration/plate_calibration.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/sensor/sensor_parameters.hpp"
 
 namespace touchcloud {
 
 class RsrtCalibration final : public Stage {
-  std::string sensor_file_, output_, distances_;
-  std::vector<double> board_corners_;
+  sensor::SensorParameters sensor_;
+  std::string output_;
+  calibration::BoardSpans distances_ = calibration::BoardSpans::AllPairs;
+  std::array<int, 2> board_corners_{};
   double square_mm_ = 4, min_board_tilt_deg_ = 5;
-  bool lens_distortion_ = true, diagonals_ = true;
+  bool diagonals_ = true;
   int min_corners_per_press_ = 9;
 
   calibration::Checkerboard board_;
+  sensor::GelStereoSensor sensor_read_;  // the initial guess, read at check
   std::vector<calibration::PressCorners> presses_;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("sensor", sensor_file_, std::string()).input_file()
-        .doc("the initial guess: a scene or sensor file with a 'sensor:' section (cameras known, plate guessed)");
-    p.add("board_corners", board_corners_, std::vector<double>{8, 6}).size(2).range(2, 100)
+    sensor_.declare(p, "the initial guess: a scene or sensor file with a 'sensor:' section (cameras known, plate "
+                       "guessed)");
+    p.add("board_corners", board_corners_, std::array<int, 2>{8, 6}).range(2, 100)
         .doc("inner corners of the board [cols, rows]; corner id = row * cols + col");
     p.add("square_mm", square_mm_, 4.0).unit("mm").above(0).doc("edge of one board square");
     p.add("output", output_, std::string("calibrated_sensor.yaml")).output_file()
         .doc("the calibrated sensor file, in the output folder");
-    p.add("lens_distortion", lens_distortion_, false)
-        .doc("apply the sensor file's lens distortion coefficients to the corner pixels (as the corners were imaged; "
-             "the sensing stages must then set it too)");
-    p.add("distances", distances_, std::string("all_pairs"))
-        .choices({"all_pairs", "rows_and_columns", "neighbours"})
+    p.add("distances", distances_, calibration::BoardSpans::AllPairs,
+          {{"all_pairs", calibration::BoardSpans::AllPairs},
+           {"rows_and_columns", calibration::BoardSpans::RowsAndColumns},
+           {"neighbours", calibration::BoardSpans::Neighbours}})
         .doc("corner pairs whose distances are fitted; neighbours (the paper's) is biased by pixel noise");
     p.add("diagonals", diagonals_, true).doc("with rows_and_columns or neighbours: also fit the squares' diagonals");
     p.add("min_corners_per_press", min_corners_per_press_, 9).range(4, 10000)
@@ -52,13 +54,10 @@ class RsrtCalibration final : public Stage {
     const std::string ext = std::filesystem::path(output_).extension().string();
     if (ext != ".yaml" && ext != ".yml")
       throw ParameterError("output", "'" + output_ + "': a sensor file is YAML (.yaml or .yml)");
-    sensor::load_sensor_parameter(sensor_file_, "sensor", true, lens_distortion_);
+    sensor_read_ = sensor_.load(true);
   }
 
-  void on_configure(RunContext& ctx) override {
-    on_check(ctx);
-    presses_.clear();
-  }
+  void on_configure(RunContext&) override { presses_.clear(); }
 
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& markers = io.input<MarkerSetPtr>("corners");
@@ -70,12 +69,10 @@ class RsrtCalibration final : public Stage {
 
   void on_finish(RunContext& ctx) override {
     if (presses_.empty()) throw InputError("no presses arrived on input 'corners': nothing to calibrate");
-    sensor::GelStereoSensor sensor = sensor::load_gelstereo_sensor(sensor_file_);
-    const optics::StereoRig initial = sensor::make_stereo_rig(sensor, true, lens_distortion_);
+    sensor::GelStereoSensor sensor = sensor_read_;
+    const optics::StereoRig initial = sensor_.rig(sensor, true);
     calibration::PlateCalibrationOptions options;
-    options.spans = distances_ == "all_pairs"          ? calibration::BoardSpans::AllPairs
-                    : distances_ == "rows_and_columns" ? calibration::BoardSpans::RowsAndColumns
-                                                       : calibration::BoardSpans::Neighbours;
+    options.spans = distances_;
     options.use_diagonals = diagonals_;
     options.min_corners_per_press = min_corners_per_press_;
     options.min_board_tilt_deg = min_board_tilt_deg_;
@@ -86,7 +83,7 @@ class RsrtCalibration final : public Stage {
     comment << "Refractive calibration (touchcloud rsrt_calibration) from " << result.presses << " presses, "
             << result.corners << " corners of a " << board_.cols << " x " << board_.rows << " board, "
             << board_.square_mm << " mm squares.\n"
-            << "Initial guess: " << sensor_file_ << "\n"
+            << "Initial guess: " << sensor_.file << "\n"
             << "Estimated: d_xy = " << result.plate.distance_mm << " mm, mu_silicone = " << result.plate.mu_silicone
             << "; fixed: mu_air, mu_acrylic, thickness_mm.\n"
             << "Mean corner-distance error " << result.mean_corner_error_before_mm << " mm before, "

@@ -3,22 +3,21 @@
 // marker_triangulator.hpp). The first frame is the no-contact reference.
 #include "marker_triangulator.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/sensor/sensor_parameters.hpp"
 #include "touchcloud/types/frames.hpp"
 
 namespace touchcloud {
 
 class RsrtTriangulation final : public Stage {
-  std::string sensor_file_;
-  bool refraction_ = true, lens_distortion_ = false;
+  sensor::SensorParameters sensor_;
+  bool refraction_ = true;
+  sensor::GelStereoSensor sensor_read_;  // read at check
   double max_gap_mm_ = 0.5;
   std::unique_ptr<rsrt::MarkerTriangulator> triangulator_;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("sensor", sensor_file_, std::string()).input_file()
-        .doc("sensor description: a scene or sensor file with a 'sensor:' section (e.g. from rsrt_calibration)");
+    sensor_.declare(p, "sensor description: a scene or sensor file with a 'sensor:' section (e.g. from rsrt_calibration)");
     p.add("refraction", refraction_, true).doc("trace the rays through the plate (false: pinhole model, for comparison)");
-    p.add("lens_distortion", lens_distortion_, false).doc("apply the sensor file's lens distortion coefficients");
     p.add("max_gap_mm", max_gap_mm_, 0.5).unit("mm").above(0.0)
         .doc("drop a pair whose two rays pass farther apart than this (a wrong match or a bad centre)");
   }
@@ -28,14 +27,12 @@ class RsrtTriangulation final : public Stage {
     ports.output<TactileCloudPtr>("tactile", "marker positions (sensor frame), their reference and displacements");
   }
 
-  void on_check(RunContext&) override {
-    sensor::load_sensor_parameter(sensor_file_, "sensor", refraction_, lens_distortion_);
-  }
+  void on_check(RunContext&) override { sensor_read_ = sensor_.load(refraction_); }
 
   void on_configure(RunContext&) override {
-    const auto sensor = sensor::load_sensor_parameter(sensor_file_, "sensor", refraction_, lens_distortion_);
+    const auto& sensor = sensor_read_;
     // The pinhole comparison keeps the real rig and ignores its plate.
-    triangulator_ = std::make_unique<rsrt::MarkerTriangulator>(sensor::make_stereo_rig(sensor, true, lens_distortion_),
+    triangulator_ = std::make_unique<rsrt::MarkerTriangulator>(sensor_.rig(sensor, true),
                                                                sensor.sensor_from_left_camera(), refraction_,
                                                                max_gap_mm_);
   }

@@ -8,15 +8,15 @@ namespace touchcloud {
 
 class Saliency final : public Stage {
   double alpha_ = 0.2;
-  std::string keep_, frame_;
+  SalientSelection keep_ = SalientSelection::All;
+  Frame frame_ = Frame::Base;
   std::size_t last_count_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("alpha", alpha_, 0.2).range(0.0, 1.0).doc("keep markers displaced more than alpha * max displacement");
-    p.add("keep", keep_, std::string("all"))
-        .choices({"all", "deepest"})
+    p.add("keep", keep_, SalientSelection::All, {{"all", SalientSelection::All}, {"deepest", SalientSelection::Deepest}})
         .doc("all salient markers, or only the most displaced one (the single-point baseline SP)");
-    p.add("frame", frame_, std::string("base")).choices({"base", "sensor"}).doc("frame of the output cloud");
+    p.add("frame", frame_, Frame::Base, {{"base", Frame::Base}, {"sensor", Frame::Sensor}}).doc("frame of the output cloud");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<TactileCloudPtr>("tactile", "the recorded tactile cloud with displacements");
@@ -32,11 +32,11 @@ class Saliency final : public Stage {
     for (double d : tactile->displacement_mm)
       if (!std::isfinite(d)) throw RunError("the tactile cloud has a non-finite displacement");
     const auto indices = salient_markers(tactile->displacement_mm, alpha_,
-                                         keep_ == "deepest" ? SalientSelection::Deepest : SalientSelection::All);
+                                         keep_);
     if (indices.empty()) throw RunError("no marker moved: the recorded frame shows no contact");
     last_count_ = indices.size();
     ctx.metric("salient_points", static_cast<double>(last_count_), "points");
-    io.output("cloud", CloudConstPtr(salient_cloud(*tactile, indices, frame_ == "base" ? Frame::Base : Frame::Sensor)));
+    io.output("cloud", CloudConstPtr(salient_cloud(*tactile, indices, frame_)));
   }
 };
 

@@ -4,32 +4,26 @@
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/surface_model.hpp"
-#include "touchcloud/types/workspace.hpp"
+#include "touchcloud/types/workspace_parameters.hpp"
 
 namespace touchcloud {
 
 class SurfaceSampler final : public Stage {
-  std::vector<double> x_mm_, y_mm_, resolution_;
+  WorkspaceParameters workspace_;
+  std::array<int, 2> resolution_{};
   WorkspaceGrid area_;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("workspace_x_mm", x_mm_, std::vector<double>{0, 100}).unit("mm").size(2).doc("area [min, max] along x, base frame");
-    p.add("workspace_y_mm", y_mm_, std::vector<double>{0, 100}).unit("mm").size(2).doc("area [min, max] along y, base frame");
-    p.add("resolution", resolution_, std::vector<double>{200, 200}).size(2).range(2, 4000)
+    workspace_.declare(p, false);
+    p.add("resolution", resolution_, std::array<int, 2>{200, 200}).range(2, 4000)
         .doc("lattice points along x and y, edges included");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<SurfaceModelPtr>("surface", "the fitted surface");
     ports.output<CloudConstPtr>("cloud", "surface points (x, y, mean z), base frame, mm");
   }
-  void on_check(RunContext&) override {
-    area_.x_mm = {x_mm_[0], x_mm_[1]};
-    area_.y_mm = {y_mm_[0], y_mm_[1]};
-    area_.validate("workspace_x_mm", "workspace_y_mm", "resolution");
-    for (double r : resolution_)
-      if (r != std::floor(r)) throw ParameterError("resolution", "lattice sizes must be whole numbers");
-  }
-  void on_configure(RunContext& ctx) override { on_check(ctx); }
+  void on_check(RunContext&) override { area_ = workspace_.resolve(); }
+  void on_configure(RunContext& ctx) override { workspace_.record_used(area_, ctx); }
 
   void on_process(StageIO& io, RunContext&) override {
     const auto& surface = io.input<SurfaceModelPtr>("surface");
@@ -40,7 +34,7 @@ class SurfaceSampler final : public Stage {
       io.output("cloud", last_cloud_);
       return;
     }
-    const int nx = static_cast<int>(resolution_[0]), ny = static_cast<int>(resolution_[1]);
+    const int nx = resolution_[0], ny = resolution_[1];
     const Eigen::VectorXd xs = Eigen::VectorXd::LinSpaced(nx, area_.x_mm[0], area_.x_mm[1]);
     const Eigen::VectorXd ys = Eigen::VectorXd::LinSpaced(ny, area_.y_mm[0], area_.y_mm[1]);
     const Eigen::MatrixXd z = surface->mean_on_lattice(xs, ys);

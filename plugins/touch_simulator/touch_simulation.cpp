@@ -47,10 +47,10 @@ std::shared_ptr<const MarkerLayout> gel_marker_layout(const Scene& scene) {
   return layout;
 }
 
-TouchSimulation::TouchSimulation(Scene scene, std::uint64_t noise_seed)
+TouchSimulation::TouchSimulation(Scene scene, std::uint64_t noise_seed, std::shared_ptr<const ObjectSurface> object)
     : scene_(std::move(scene)), noise_seed_(noise_seed), motion_(scene_.robot, scene_.sensor.fps) {
   const EffectSet& fx = scene_.effects;
-  object_ = make_object_surface(scene_.object);
+  object_ = object ? std::move(object) : std::shared_ptr<const ObjectSurface>(make_object_surface(scene_.object));
   layout_ = gel_marker_layout(scene_);
   optics_ = std::make_unique<SensorOptics>(scene_, fx.has(Effect::Refraction), fx.has(Effect::LensDistortion));
   rest_views_.left = optics_->view(StereoSide::Left, layout_->rest_mm, scene_.sensor.markers.diameter_mm);

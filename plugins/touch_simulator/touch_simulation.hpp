@@ -50,7 +50,9 @@ class TouchSimulation {
   // Builds the object, the marker layout and the optics, and checks that each
   // camera sees markers of the gel at rest (InputError naming
   // sensor.cameras otherwise). `scene.robot` should hold any overrides.
-  TouchSimulation(Scene scene, std::uint64_t noise_seed);
+  // `object`: the scene's object surface when already built (a stage builds
+  // it at check, where a bad mesh is bad input); null builds it here.
+  TouchSimulation(Scene scene, std::uint64_t noise_seed, std::shared_ptr<const ObjectSurface> object = nullptr);
 
   const Scene& scene() const { return scene_; }
   const MarkerLayout& markers() const { return *layout_; }
@@ -78,7 +80,7 @@ class TouchSimulation {
 
   Scene scene_;
   std::uint64_t noise_seed_;
-  std::unique_ptr<ObjectSurface> object_;
+  std::shared_ptr<const ObjectSurface> object_;
   std::shared_ptr<const MarkerLayout> layout_;
   std::unique_ptr<SensorOptics> optics_;
   StereoViews rest_views_;

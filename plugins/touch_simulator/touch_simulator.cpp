@@ -24,21 +24,16 @@ CloudPtr to_cloud(const std::vector<Eigen::Vector3d>& points) {
   return cloud;
 }
 
-// -1 means "as the scene says"; anything else must obey `rule`.
-double robot_value(double param, double scene_value, const char* name, bool positive) {
-  if (param == -1.0) return scene_value;
-  if (positive ? !(param > 0) : !(param >= 0))
-    throw ParameterError(name, std::to_string(param) + " must be " + (positive ? "> 0" : ">= 0") +
-                                   ", or -1 for the scene's robot." + name);
-  return param;
-}
-
 }  // namespace
 
 class TouchSimulator final : public Stage {
   std::string scene_file_;
-  double speed_mm_s_ = -1, approach_speed_mm_s_ = -1, press_depth_mm_ = -1, safe_clearance_mm_ = -1, max_contact_depth_mm_ = -1;
-  std::vector<double> target_xy_mm_;
+  // Not set: the scene's robot section says.
+  std::optional<double> speed_mm_s_, approach_speed_mm_s_, press_depth_mm_, safe_clearance_mm_, max_contact_depth_mm_;
+  std::optional<std::array<double, 2>> target_xy_mm_;
+
+  sim::Scene scene_;  // read at check, with the robot values in force
+  std::shared_ptr<const sim::ObjectSurface> object_;  // built at check
 
   std::unique_ptr<sim::TouchSimulation> sim_;
   CloudConstPtr rest_cloud_;
@@ -46,17 +41,17 @@ class TouchSimulator final : public Stage {
 
   void declare_parameters(ParameterSet& p) override {
     p.add("scene", scene_file_, std::string()).input_file().doc("scene file (YAML): object, sensor, robot, effects");
-    p.add("speed_mm_s", speed_mm_s_, -1.0).unit("mm/s").at_least(-1)
-        .doc("descent speed once the gel touches; -1: the scene's");
-    p.add("approach_speed_mm_s", approach_speed_mm_s_, -1.0).unit("mm/s").at_least(-1)
-        .doc("descent speed until the first frame with contact (0: speed_mm_s); -1: the scene's");
-    p.add("press_depth_mm", press_depth_mm_, -1.0).unit("mm").at_least(-1)
-        .doc("further press after stable contact; -1: the scene's");
-    p.add("safe_clearance_mm", safe_clearance_mm_, -1.0).unit("mm").at_least(-1)
-        .doc("gel apex above the highest object point under the gel at the start; -1: the scene's");
-    p.add("max_contact_depth_mm", max_contact_depth_mm_, -1.0).unit("mm").at_least(-1)
-        .doc("travel past first contact without stable contact that fails the run; -1: the scene's");
-    p.add("target_xy_mm", target_xy_mm_, std::vector<double>{}).unit("mm")
+    p.add("speed_mm_s", speed_mm_s_).unit("mm/s").above(0)
+        .doc("descent speed once the gel touches (not set: the scene's robot.speed_mm_s)");
+    p.add("approach_speed_mm_s", approach_speed_mm_s_).unit("mm/s").at_least(0)
+        .doc("descent speed until the first frame with contact (0: speed_mm_s; not set: the scene's)");
+    p.add("press_depth_mm", press_depth_mm_).unit("mm").at_least(0)
+        .doc("further press after stable contact (not set: the scene's)");
+    p.add("safe_clearance_mm", safe_clearance_mm_).unit("mm").at_least(0)
+        .doc("gel apex above the highest object point under the gel at the start (not set: the scene's)");
+    p.add("max_contact_depth_mm", max_contact_depth_mm_).unit("mm").above(0)
+        .doc("travel past first contact without stable contact that fails the run (not set: the scene's)");
+    p.add("target_xy_mm", target_xy_mm_).unit("mm")
         .doc("[x, y] of the touch in the base frame when input 'target' is not wired");
   }
 
@@ -73,26 +68,26 @@ class TouchSimulator final : public Stage {
     ports.output<bool>("touch_done", "true on the recorded frame (stable contact, then the further press)");
   }
 
-  sim::Scene scene() const {
-    sim::Scene scene = sim::load_scene(scene_file_);
-    sim::RobotSpec& r = scene.robot;
-    r.speed_mm_s = robot_value(speed_mm_s_, r.speed_mm_s, "speed_mm_s", true);
-    r.approach_speed_mm_s = robot_value(approach_speed_mm_s_, r.approach_speed_mm_s, "approach_speed_mm_s", false);
-    r.press_depth_mm = robot_value(press_depth_mm_, r.press_depth_mm, "press_depth_mm", false);
-    r.safe_clearance_mm = robot_value(safe_clearance_mm_, r.safe_clearance_mm, "safe_clearance_mm", false);
-    r.max_contact_depth_mm = robot_value(max_contact_depth_mm_, r.max_contact_depth_mm, "max_contact_depth_mm", true);
-    return scene;
-  }
-
+  // The scene with the robot values this stage sets; an unreadable mesh is
+  // bad input, found by `validate`. Kept for configure.
   void on_check(RunContext&) override {
-    if (!target_xy_mm_.empty() && target_xy_mm_.size() != 2)
-      throw ParameterError("target_xy_mm", "must be empty or [x, y]");
-    sim::make_object_surface(scene().object);  // an unreadable mesh is bad input, found by `validate`
+    scene_ = sim::load_scene(scene_file_);
+    sim::RobotSpec& r = scene_.robot;
+    for (auto [value, field] : {std::pair{&speed_mm_s_, &r.speed_mm_s}, {&approach_speed_mm_s_, &r.approach_speed_mm_s},
+                                {&press_depth_mm_, &r.press_depth_mm}, {&safe_clearance_mm_, &r.safe_clearance_mm},
+                                {&max_contact_depth_mm_, &r.max_contact_depth_mm}})
+      if (*value) *field = **value;
+    object_ = sim::make_object_surface(scene_.object);
   }
 
   void on_configure(RunContext& ctx) override {
-    on_check(ctx);
-    sim_ = std::make_unique<sim::TouchSimulation>(scene(), ctx.rng()());
+    sim_ = std::make_unique<sim::TouchSimulation>(scene_, ctx.rng()(), object_);
+    const sim::RobotSpec& r = scene_.robot;
+    ctx.used("speed_mm_s", r.speed_mm_s);
+    ctx.used("approach_speed_mm_s", r.approach_speed_mm_s);
+    ctx.used("press_depth_mm", r.press_depth_mm);
+    ctx.used("safe_clearance_mm", r.safe_clearance_mm);
+    ctx.used("max_contact_depth_mm", r.max_contact_depth_mm);
     const auto& layout = sim_->markers();
     rest_cloud_ = to_cloud(layout.rest_mm);
     marker_ids_.resize(layout.rest_mm.size());
@@ -120,13 +115,13 @@ class TouchSimulator final : public Stage {
 
   Eigen::Vector2d target(const StageIO& io) const {
     if (const auto* t = io.optional_input<TouchTarget>("target")) {
-      if (!target_xy_mm_.empty())
+      if (target_xy_mm_)
         throw ParameterError("target_xy_mm", "is set, but input 'target' is wired too: use one");
       return t->xy_mm;
     }
-    if (target_xy_mm_.size() != 2)
+    if (!target_xy_mm_)
       throw InputError("no touch target: wire input 'target' (a touch_target) or set target_xy_mm: [x, y]");
-    return {target_xy_mm_[0], target_xy_mm_[1]};
+    return {(*target_xy_mm_)[0], (*target_xy_mm_)[1]};
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {

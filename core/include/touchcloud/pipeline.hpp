@@ -40,6 +40,8 @@ struct Override {
 Override parse_override(const std::string& text);  // "k=v"; InputError otherwise
 
 class ResolvedPipeline;  // private to the runtime
+struct RunOptions;
+struct RunResult;
 
 // A parsed, resolved and validated pipeline, ready to run. Every problem is
 // reported at load, as InputError diagnostics with FILE:LINE:COL.
@@ -59,9 +61,9 @@ class Pipeline {
   // Every stage id and its resolved parameters ("id" -> "param" -> value).
   std::map<std::string, std::map<std::string, ParamValue>> parameters() const;
 
-  ResolvedPipeline& resolved() { return *impl_; }
 
  private:
+  friend RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options);
   explicit Pipeline(std::unique_ptr<ResolvedPipeline> impl);
   std::unique_ptr<ResolvedPipeline> impl_;
 };

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "touchcloud/parameters.hpp"
+
 namespace touchcloud {
 
 // The placeholder RunContext::with_iteration replaces.
@@ -25,13 +27,20 @@ struct RunRecord {
   std::map<std::string, MetricSeries> metrics;  // key: "stage.metric"
   std::map<std::string, std::string> notes;     // key: "stage.note"
   std::vector<std::string> outputs;             // file names in the output folder
-  std::filesystem::path staging_dir;            // empty: this run writes no files
-  bool quiet = false;
+  // What a stage used where its parameters left the choice to it ("not
+  // set": the scene's value; a build's backend): stage id -> name -> value.
+  std::map<std::string, std::map<std::string, ParamValue>> used;
+};
+
+// How the runtime runs a stage; not part of what the run records.
+struct RunSettings {
+  std::filesystem::path staging_dir;  // empty: this run writes no files
+  bool quiet = false;                 // no log lines
 };
 
 class RunContext {
  public:
-  RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record);
+  RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record, RunSettings settings = {});
 
   const std::string& stage_id() const { return stage_id_; }
   std::uint64_t seed() const { return seed_; }
@@ -49,6 +58,10 @@ class RunContext {
   // iteration inside a loop, it becomes a series.
   void metric(const std::string& name, double value, const std::string& unit = "");
   void note(const std::string& name, const std::string& text);
+  // The value used for `name` where the stage chose it: an optional
+  // parameter left "not set" (summary.json shows this value in its place),
+  // or a setting of the build or machine (the BLAS backend and threads).
+  void used(const std::string& name, const ParamValue& value);
   // Where to write an output file named `file_name` (relative to --out). The
   // file appears in the output folder only when the whole run succeeds.
   std::filesystem::path output_path(const std::string& file_name);
@@ -58,6 +71,7 @@ class RunContext {
   std::string stage_id_;
   std::uint64_t seed_;
   RunRecord& record_;
+  RunSettings settings_;
   std::mt19937_64 rng_;
   int iteration_ = -1;
 };

@@ -1,12 +1,19 @@
 // A stage is one plugin instance in a pipeline. The runtime owns the
 // lifecycle through the public, non-virtual calls; a plugin implements only
-// the private hooks it needs.
+// the private hooks it needs, and never calls one hook from another.
 //
-//   declare  -> parameters and ports, bound to members (once per instance)
-//   check    -> cheap checks of external resources (files) for `validate`
-//   configure-> once, after parameters are set, before the first item
-//   process  -> once per item (per loop iteration inside a loop)
-//   finish   -> once, after the last item: final metrics and files
+// The order, enforced here for the runtime and the test harness alike:
+//   declare   -> parameters and ports, bound to members (once per instance);
+//                every default is checked against its own rule
+//   (the runtime or harness sets parameters)
+//   check     -> the rules between parameters, then on_check: cheap checks
+//                of external resources (files) for `validate`. State found
+//                here (a file read, a scene parsed) is kept for configure
+//   configure -> once, before the first item; runs check first if it has
+//                not run
+//   process   -> once per item (per loop iteration inside a loop); only
+//                after configure
+//   finish    -> once, after the last item: final metrics and files
 #pragma once
 
 #include "touchcloud/error.hpp"
@@ -21,11 +28,12 @@ class Stage {
   virtual ~Stage() = default;
 
   void declare(ParameterSet& params, PortSet& ports);
-  void check(RunContext& ctx) { on_check(ctx); }
-  void configure(RunContext& ctx) { on_configure(ctx); }
+  // ParameterError for the first broken rule between parameters.
+  void check(RunContext& ctx);
+  void configure(RunContext& ctx);
   // Runs the hook, then insists every output that is read was produced.
   void process(StageIO& io, RunContext& ctx);
-  void finish(RunContext& ctx) { on_finish(ctx); }
+  void finish(RunContext& ctx);
 
  private:
   virtual void declare_parameters(ParameterSet&) {}
@@ -35,7 +43,9 @@ class Stage {
   virtual void on_process(StageIO& io, RunContext& ctx) = 0;
   virtual void on_finish(RunContext&) {}
 
+  const ParameterSet* params_ = nullptr;
   const PortSet* ports_ = nullptr;
+  bool checked_ = false, configured_ = false;
 };
 
 }  // namespace touchcloud

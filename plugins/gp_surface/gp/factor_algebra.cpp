@@ -146,6 +146,14 @@ void set_factor_algebra_threads(int threads) {
 #endif
 }
 
+bool factor_algebra_threads_settable() {
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  return true;
+#else
+  return false;
+#endif
+}
+
 int factor_algebra_threads() {
 #ifdef TOUCHCLOUD_GP_OPENBLAS
   return openblas_get_num_threads();

@@ -36,6 +36,8 @@ Eigen::MatrixXd product_transposed(const Eigen::Ref<const Eigen::MatrixXd>& a, c
 // otherwise). OpenBLAS keeps one count for the whole process, so this sets
 // it for every caller. Eigen's path runs on one thread whatever the count.
 void set_factor_algebra_threads(int threads);
+// Whether the thread count can be set: this build has OpenBLAS.
+bool factor_algebra_threads_settable();
 // The count in force: OpenBLAS's, or 1 for Eigen.
 int factor_algebra_threads();
 

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "touchcloud/config/yaml_fields.hpp"
+#include "touchcloud/types/workspace_parameters.hpp"
 
 namespace fs = std::filesystem;
 
@@ -49,22 +50,6 @@ void read_object(ConfigFields& f, ObjectSpec& object, const fs::path& folder, Co
     object.base_from_object = config::read_pose(*pose, &rpy);
     if (object.kind != ObjectKind::Mesh && (rpy[0] != 0 || rpy[1] != 0))
       pose->error("rpy_deg", "an analytic surface can only turn about z (roll and pitch must be 0)");
-  }
-}
-
-void read_workspace(ConfigFields& f, Workspace& w) {
-  const auto x = f.numbers("x_mm", {w.x_mm[0], w.x_mm[1]}, 2);
-  const auto y = f.numbers("y_mm", {w.y_mm[0], w.y_mm[1]}, 2);
-  if (!(x[0] < x[1])) f.error("x_mm", "must be [min, max] with min < max");
-  if (!(y[0] < y[1])) f.error("y_mm", "must be [min, max] with min < max");
-  w.x_mm = {x[0], x[1]};
-  w.y_mm = {y[0], y[1]};
-  const auto grid = f.numbers("grid", {double(w.cells_x), double(w.cells_y)}, 2, FieldRule::Positive);
-  if (grid[0] != std::floor(grid[0]) || grid[1] != std::floor(grid[1]) || grid[0] > 1e4 || grid[1] > 1e4)
-    f.error("grid", "must be two whole numbers of cells [nx, ny], each >= 1");
-  else {
-    w.cells_x = static_cast<int>(grid[0]);
-    w.cells_y = static_cast<int>(grid[1]);
   }
 }
 
@@ -163,7 +148,7 @@ Scene load_scene(const fs::path& file) {
     scene.name = top.text("name", scene.name);
     top.text("description", "");
     if (auto object = top.child("object")) read_object(*object, scene.object, file.parent_path(), problems);
-    if (auto workspace = top.child("workspace")) read_workspace(*workspace, scene.workspace);
+    if (auto workspace = top.child("workspace")) read_workspace_section(*workspace, scene.workspace);
     if (auto fields = top.child("sensor")) sensor::read_gelstereo_sensor(*fields, problems, scene.sensor);
     if (auto robot = top.child("robot")) read_robot(*robot, scene.robot);
     read_effects(top.raw("effects"), scene, problems);

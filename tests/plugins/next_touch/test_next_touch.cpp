@@ -101,11 +101,36 @@ TEST_F(NextTouchStage, InitialTouchesAreRandomThenVarianceDecides) {
 
 TEST_F(NextTouchStage, EmptyWorkspaceIsRefusedAtValidation) {
   // Along x with max equal to min, along y with max below min.
-  for (const std::string& bad : {std::string("workspace_x_mm: [10, 10]"), std::string("workspace_y_mm: [20, 10]")}) {
-    const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {" + bad + "}\n");
+  for (const std::string& bad : {std::string("workspace_x_mm: [10, 10], workspace_y_mm: [0, 10]"),
+                                 std::string("workspace_y_mm: [20, 10], workspace_x_mm: [0, 10]")}) {
+    const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {" + bad + ", grid: [2, 2]}\n");
     ASSERT_EQ(d.size(), 1u) << bad;
     const std::string parameter = bad.substr(0, bad.find(':'));
     EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter '" + parameter + "': the workspace is empty")) << d[0].str();
     EXPECT_EQ(d[0].where.line, 4) << bad;
   }
+}
+
+// The workspace group: what the stage does not set comes from the scene's
+// workspace: section (fox mask: [-60, 60] x [-60, 60], 14 x 14 cells), and
+// summary.json records those values; with neither, validation says what is
+// missing.
+TEST_F(NextTouchStage, TheWorkspaceComesFromTheSceneWhereTheStageDoesNotSetIt) {
+  const std::string scene = std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/fox_mask/scene.yaml";
+  Pipeline p = load("stages:\n  - id: plan\n    plugin: next_touch\n"
+                    "    params: {scene: " + scene + ", workspace_y_mm: [0, 12], initial_random: 1}\n");
+  RunOptions o;
+  o.quiet = true;
+  const RunResult r = run_pipeline(p, o);
+  const auto& used = r.record.used.at("plan");
+  EXPECT_EQ(used.at("workspace_x_mm"), ParamValue(std::vector<double>{-60, 60}));
+  EXPECT_EQ(used.at("grid"), ParamValue(std::vector<std::int64_t>{14, 14}));
+  EXPECT_EQ(used.count("workspace_y_mm"), 0u) << "set by the stage, not taken from the scene";
+  const int cell = static_cast<int>(r.record.metrics.at("plan.cell").values.at(0));
+  EXPECT_TRUE(cell >= 0 && cell < 14 * 14) << cell;
+
+  const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n    params: {workspace_x_mm: [0, 10]}\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(touchcloud::test::mentions(d[0], "the workspace needs workspace_y_mm, or a 'scene'")) << d[0].str();
+  EXPECT_EQ(d[0].where.line, 4);
 }

@@ -73,8 +73,8 @@ TEST_F(StableContactStage, CountsFramesAboveTheThresholdAndResetsBelowIt) {
 }
 
 TEST_F(StableContactStage, ThePapersDefaultsNeedElevenFramesAboveTwoMillimetres) {
-  EXPECT_EQ(std::get<double>(params_->find("threshold_mm")->default_value), 2.0);
-  EXPECT_EQ(std::get<std::int64_t>(params_->find("frames")->default_value), 10);
+  EXPECT_EQ(std::get<double>(*params_->find("threshold_mm")->default_value), 2.0);
+  EXPECT_EQ(std::get<std::int64_t>(*params_->find("frames")->default_value), 10);
   for (int i = 1; i <= 10; ++i) EXPECT_FALSE(frame(2.1).stable) << "frame " << i;
   EXPECT_TRUE(frame(2.1).stable);
   EXPECT_TRUE(frame(2.1).stable);

@@ -34,7 +34,8 @@ TEST_F(SurfaceSampler, LatticeOfTheMeanOverTheWorkspace) {
 // As next_touch: an empty workspace along x or y (max not above min) is
 // refused when the pipeline is checked, at the parameter's line.
 TEST_F(SurfaceSampler, EmptyWorkspaceIsRefusedAtValidation) {
-  for (const std::string& bad : {std::string("workspace_x_mm: [10, 10]"), std::string("workspace_y_mm: [20, 10]")}) {
+  for (const std::string& bad : {std::string("workspace_x_mm: [10, 10], workspace_y_mm: [0, 10]"),
+                                 std::string("workspace_y_mm: [20, 10], workspace_x_mm: [0, 10]")}) {
     const auto d = errors(
         "stages:\n  - id: model\n    plugin: test_plane_surface\n"
         "  - id: sample\n    plugin: surface_sampler\n    params: {" + bad + "}\n"
@@ -68,7 +69,7 @@ class CountingPlane final : public SurfaceModel {
 TEST(SurfaceSamplerStage, TheSameModelAgainGivesTheSamePointsWithoutEvaluating) {
   touchcloud::test::StageHarness stage(
       "surface_sampler", {{"workspace_x_mm", std::vector<double>{0, 10}}, {"workspace_y_mm", std::vector<double>{0, 10}},
-                          {"resolution", std::vector<double>{11, 11}}});
+                          {"resolution", std::vector<std::int64_t>{11, 11}}});
   stage.configure();
   const auto first = std::make_shared<CountingPlane>(2.0), second = std::make_shared<CountingPlane>(5.0);
   const auto sample = [&](const std::shared_ptr<CountingPlane>& model) {

@@ -11,14 +11,15 @@ class CounterStage final : public touchcloud::Stage {
   double step_ = 1.0;
   std::vector<double> offsets_;
   bool flag_ = false;
-  std::string label_;
+  enum class Label { A, B };
+  Label label_ = Label::A;
   int check_ms_ = 0;
   void declare_parameters(touchcloud::ParameterSet& p) override {
     p.add("stop_at", stop_at_, 0).at_least(0).unit("calls").doc("'done' turns true at this count (0: never)");
     p.add("step", step_, 1.0).range(-100.0, 100.0).doc("added to the previous value each call");
     p.add("offsets", offsets_, std::vector<double>{0, 0}).size(2).doc("two numbers");
     p.add("flag", flag_, false).doc("a switch");
-    p.add("label", label_, std::string("a")).choices({"a", "b"}).doc("a choice");
+    p.add("label", label_, Label::A, {{"a", Label::A}, {"b", Label::B}}).doc("a choice");
     p.add("check_ms", check_ms_, 0).at_least(0).unit("ms").doc("time its check hook takes (as a data file's loading)");
   }
   void on_check(touchcloud::RunContext&) override {

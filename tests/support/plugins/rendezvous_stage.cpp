@@ -17,22 +17,23 @@ std::condition_variable signalled;
 int signals = 0;
 
 class RendezvousStage final : public touchcloud::Stage {
-  std::string role_;
+  enum class Role { Signal, Wait };
+  Role role_ = Role::Signal;
   int timeout_ms_ = 10000;
   int calls_ = 0;
   void declare_parameters(touchcloud::ParameterSet& p) override {
-    p.add("role", role_, std::string("signal")).choices({"signal", "wait"}).doc("count calls, or wait for them");
+    p.add("role", role_, Role::Signal, {{"signal", Role::Signal}, {"wait", Role::Wait}}).doc("count calls, or wait for them");
     p.add("timeout_ms", timeout_ms_, 10000).at_least(1).unit("ms").doc("how long a wait may take");
   }
   void declare_ports(touchcloud::PortSet& ports) override { ports.output<double>("value", "calls so far"); }
   void on_configure(touchcloud::RunContext&) override {
     std::lock_guard<std::mutex> lock(mutex);
-    if (role_ == "signal") signals = 0;
+    if (role_ == Role::Signal) signals = 0;
   }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
     ++calls_;
     std::unique_lock<std::mutex> lock(mutex);
-    if (role_ == "signal") {
+    if (role_ == Role::Signal) {
       ++signals;
       signalled.notify_all();
     } else if (!signalled.wait_for(lock, std::chrono::milliseconds(timeout_ms_), [&] { return signals >= calls_; })) {

@@ -8,15 +8,15 @@ class ThrowingStage final : public touchcloud::Stage {
   void declare_parameters(touchcloud::ParameterSet& p) override {
     p.add("fail_at", fail_at_, 0).at_least(0).doc("call index that throws");
     p.add("skip_output", skip_output_, false).doc("return without producing 'value'");
-    p.add("error", error_, std::string("runtime")).choices({"runtime", "input", "run"})
+    p.add("error", error_, Kind::Runtime, {{"runtime", Kind::Runtime}, {"input", Kind::Input}, {"run", Kind::Run}})
         .doc("what it throws: std::runtime_error, touchcloud::InputError or touchcloud::RunError");
   }
   void declare_ports(touchcloud::PortSet& ports) override { ports.output<double>("value", "the call index"); }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
     if (calls_ == fail_at_) {
       const std::string what = "the gel tore (simulated failure)";
-      if (error_ == "input") throw touchcloud::InputError(what);
-      if (error_ == "run") throw touchcloud::RunError(what);
+      if (error_ == Kind::Input) throw touchcloud::InputError(what);
+      if (error_ == Kind::Run) throw touchcloud::RunError(what);
       throw std::runtime_error(what);
     }
     if (skip_output_) return;
@@ -24,7 +24,8 @@ class ThrowingStage final : public touchcloud::Stage {
   }
   int calls_ = 0;
   bool skip_output_ = false;
-  std::string error_;
+  enum class Kind { Runtime, Input, Run };
+  Kind error_ = Kind::Runtime;
 };
 }  // namespace
 

@@ -55,43 +55,54 @@ std::vector<std::string> split_names(const std::vector<std::string>& entries) {
 
 }  // namespace
 
-const std::vector<std::string>& MetricSelection::known_names() {
-  static const std::vector<std::string> names = {"chamfer_est_to_gt", "chamfer_gt_to_est", "chamfer_symmetric",
-                                                 "hausdorff", "fscore"};
+const std::vector<MetricName>& metric_names() {
+  using S = MetricSelection;
+  using C = CloudScore;
+  static const std::vector<MetricName> names = {
+      {"chamfer_est_to_gt", "est->gt mm", "mm", &S::chamfer_est_to_gt, true, &C::chamfer_est_to_gt_mm},
+      {"chamfer_gt_to_est", "gt->est mm", "mm", &S::chamfer_gt_to_est, true, &C::chamfer_gt_to_est_mm},
+      {"chamfer_symmetric", "symmetric mm", "mm", &S::chamfer_symmetric, true, &C::chamfer_symmetric_mm},
+      {"hausdorff", "hausdorff mm", "mm", &S::hausdorff, true, &C::hausdorff_mm},
+      {"fscore", "fscore", "", &S::fscore, true, &C::fscore},
+      {"precision", "precision", "", &S::fscore, false, &C::precision},
+      {"recall", "recall", "", &S::fscore, false, &C::recall},
+  };
   return names;
 }
 
+namespace {
+std::string known_list() {
+  std::string list = "all";
+  for (const auto& m : metric_names())
+    if (m.selectable) list += std::string(", ") + m.name;
+  return list;
+}
+}  // namespace
+
 MetricSelection MetricSelection::parse(const std::vector<std::string>& entries) {
   const std::vector<std::string> names = split_names(entries);
-  if (names.empty()) throw InputError("no metric named (known: all, chamfer_est_to_gt, chamfer_gt_to_est, "
-                                      "chamfer_symmetric, hausdorff, fscore)");
+  if (names.empty()) throw InputError("no metric named (known: " + known_list() + ")");
   MetricSelection s{false, false, false, false, false};
   for (const auto& n : names) {
-    if (n == "all") s = MetricSelection{};
-    else if (n == "chamfer_est_to_gt") s.chamfer_est_to_gt = true;
-    else if (n == "chamfer_gt_to_est") s.chamfer_gt_to_est = true;
-    else if (n == "chamfer_symmetric") s.chamfer_symmetric = true;
-    else if (n == "hausdorff") s.hausdorff = true;
-    else if (n == "fscore") s.fscore = true;
-    else
-      throw InputError("unknown metric '" + n + "' (known: all, chamfer_est_to_gt, chamfer_gt_to_est, "
-                       "chamfer_symmetric, hausdorff, fscore)");
+    if (n == "all") {
+      s = MetricSelection{};
+      continue;
+    }
+    bool known = false;
+    for (const auto& m : metric_names())
+      if (m.selectable && n == m.name) {
+        s.*m.selected = true;
+        known = true;
+      }
+    if (!known) throw InputError("unknown metric '" + n + "' (known: " + known_list() + ")");
   }
   return s;
 }
 
 Score CloudScore::to_score() const {
   Score s;
-  if (metrics.chamfer_est_to_gt) s.metrics.push_back({"chamfer_est_to_gt", chamfer_est_to_gt_mm, "mm"});
-  if (metrics.chamfer_gt_to_est) s.metrics.push_back({"chamfer_gt_to_est", chamfer_gt_to_est_mm, "mm"});
-  if (metrics.chamfer_symmetric) s.metrics.push_back({"chamfer_symmetric", chamfer_symmetric_mm, "mm"});
-  if (metrics.hausdorff) s.metrics.push_back({"hausdorff", hausdorff_mm, "mm"});
-  if (metrics.fscore) {
-    s.metrics.push_back({"fscore", fscore, ""});
-    s.metrics.push_back({"precision", precision, ""});
-    s.metrics.push_back({"recall", recall, ""});
-    s.metrics.push_back({"fscore_threshold", fscore_threshold_mm, "mm"});
-  }
+  for (const auto& m : metric_names())
+    if (metrics.*m.selected) s.metrics.push_back({m.name, this->*m.value, m.unit});
   return s;
 }
 

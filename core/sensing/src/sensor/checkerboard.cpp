@@ -14,12 +14,9 @@ void Checkerboard::validate() const {
   if (!(square_mm > 0)) throw InputError("board: square_mm must be > 0, got " + std::to_string(square_mm));
 }
 
-Checkerboard Checkerboard::from_parameters(const std::vector<double>& board_corners, double square_mm) {
-  if (board_corners.size() != 2) throw ParameterError("board_corners", "must be [cols, rows]");
-  for (double v : board_corners)
-    if (v != std::floor(v)) throw ParameterError("board_corners", "must be whole numbers [cols, rows]");
+Checkerboard Checkerboard::from_parameters(const std::array<int, 2>& board_corners, double square_mm) {
   if (!(square_mm > 0)) throw ParameterError("square_mm", "must be > 0");
-  const Checkerboard board{static_cast<int>(board_corners[0]), static_cast<int>(board_corners[1]), square_mm};
+  const Checkerboard board{board_corners[0], board_corners[1], square_mm};
   try {
     board.validate();
   } catch (const InputError& e) {

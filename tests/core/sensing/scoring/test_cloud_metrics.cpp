@@ -159,8 +159,7 @@ TEST(CloudMetrics, SelectionLimitsWhatIsComputedAndReported) {
   const Score two = scoring::score_estimate(kEstimate, NearestPointIndex(kGroundTruth), o).to_score();
   std::vector<std::string> names;
   for (const auto& m : two.metrics) names.push_back(m.name + "[" + m.unit + "]");
-  EXPECT_EQ(names, (std::vector<std::string>{"hausdorff[mm]", "fscore[]", "precision[]", "recall[]",
-                                             "fscore_threshold[mm]"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"hausdorff[mm]", "fscore[]", "precision[]", "recall[]"}));
   EXPECT_DOUBLE_EQ(two.find("fscore")->value, 0.4);
   EXPECT_EQ(two.find("chamfer_est_to_gt"), nullptr);
 }

@@ -1,5 +1,6 @@
-// The calibration board from stage parameters: whole corner counts, at
-// least 2 x 2, a positive square; otherwise a ParameterError naming it.
+// The calibration board from stage parameters: at least 2 x 2 corners (whole
+// numbers, two of them: the parameter's type), a positive square; otherwise a
+// ParameterError naming it.
 #include <gtest/gtest.h>
 
 #include <tuple>
@@ -19,8 +20,8 @@ TEST(Checkerboard, FromParametersTakesColsThenRows) {
 }
 
 TEST(Checkerboard, BadBoardsNameTheParameter) {
-  for (const auto& [corners, square, named] : std::vector<std::tuple<std::vector<double>, double, std::string>>{
-           {{8.5, 6}, 4.0, "board_corners"}, {{8}, 4.0, "board_corners"}, {{1, 6}, 4.0, "board_corners"},
+  for (const auto& [corners, square, named] : std::vector<std::tuple<std::array<int, 2>, double, std::string>>{
+           {{1, 6}, 4.0, "board_corners"}, {{8, 1}, 4.0, "board_corners"},
            {{8, 6}, 0.0, "square_mm"}}) {
     try {
       Checkerboard::from_parameters(corners, square);

@@ -38,8 +38,23 @@ struct MetricSelection {
   // may hold comma-separated lists. InputError names an unknown metric and
   // lists the known ones.
   static MetricSelection parse(const std::vector<std::string>& names);
-  static const std::vector<std::string>& known_names();
 };
+
+struct CloudScore;
+
+// The one table of the metrics scoring reports, in their order: the name
+// (in --metrics, summary.json and score's JSON), the CLI's column title, the
+// unit, the selection flag that asks for it (precision and recall come with
+// the F-score and cannot be asked for alone) and where its value lives.
+struct MetricName {
+  const char* name;
+  const char* column;
+  const char* unit;
+  bool MetricSelection::*selected;
+  bool selectable;
+  double CloudScore::*value;
+};
+const std::vector<MetricName>& metric_names();
 
 struct ScoreOptions {
   MetricSelection metrics;
@@ -55,8 +70,8 @@ struct CloudScore {
   double fscore = 0, precision = 0, recall = 0, fscore_threshold_mm = 0;
 
   // The selected metrics as named values with units ("mm", or "" for ratios),
-  // in the order listed at the top of this file; the F-score comes with
-  // "precision", "recall" and "fscore_threshold" (mm).
+  // in the order of metric_names(); the F-score comes with "precision" and
+  // "recall" (its threshold is a setting, fscore_threshold_mm, not a result).
   Score to_score() const;
 };
 

@@ -3,6 +3,8 @@
 // id = row * cols + col; lengths in mm.
 #pragma once
 
+#include <array>
+
 #include <vector>
 
 namespace touchcloud::sensor {
@@ -17,7 +19,7 @@ struct Checkerboard {
 
   // From a stage's parameters `board_corners` [cols, rows] and `square_mm`;
   // ParameterError naming the parameter when they are not a valid board.
-  static Checkerboard from_parameters(const std::vector<double>& board_corners, double square_mm);
+  static Checkerboard from_parameters(const std::array<int, 2>& board_corners, double square_mm);
 };
 
 }  // namespace touchcloud::sensor

@@ -5,8 +5,15 @@
 
 #include "detector/stereo_markers.hpp"
 #include "touchcloud/plugin.hpp"
+#include <opencv2/core/version.hpp>
+#include "touchcloud/library_versions.hpp"
 
 namespace touchcloud {
+
+// Recorded in summary.json's versions when this plugin is loaded.
+namespace {
+const LibraryVersion opencv_version("opencv", CV_VERSION);
+}  // namespace
 
 class MarkerDetection final : public Stage {
   MarkerPolarity polarity_ = MarkerPolarity::Dark;

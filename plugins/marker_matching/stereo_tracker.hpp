@@ -31,7 +31,6 @@ class StereoMarkerTracker {
   // one whose markers mostly fail to pair (a sensor model that does not fit).
   MarkerSet process(const MarkerSet& frame);
 
-  bool has_reference() const { return have_reference_; }
   std::size_t reference_pairs() const { return reference_pairs_; }
   std::size_t joined_later() const { return joined_; }
 

@@ -11,8 +11,15 @@
 #include "touchcloud/types/contact_state.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"
 #include "touchcloud/types/touch.hpp"
+#include <opencv2/core/version.hpp>
+#include "touchcloud/library_versions.hpp"
 
 namespace touchcloud {
+
+// Recorded in summary.json's versions when this plugin is loaded.
+namespace {
+const LibraryVersion opencv_version("opencv", CV_VERSION);
+}  // namespace
 
 namespace {
 

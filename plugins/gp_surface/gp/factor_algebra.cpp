@@ -164,7 +164,7 @@ int factor_algebra_threads() {
 
 const char* factor_algebra_backend() {
 #ifdef TOUCHCLOUD_GP_OPENBLAS
-  static const std::string name = std::string("OpenBLAS ") + openblas_get_config() + " (" +
+  static const std::string name = std::string(openblas_get_config()) + " (" +
                                   std::to_string(openblas_get_num_threads()) + " threads) from " +
                                   std::to_string(kOpenBlasFromRows) + " rows, Eigen below";
   return name.c_str();

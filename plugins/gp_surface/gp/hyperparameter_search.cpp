@@ -9,8 +9,15 @@
 #include "gp/marginal_likelihood.hpp"
 #include "gp/point_subset.hpp"
 #include "touchcloud/error.hpp"
+#include <ceres/version.h>
+#include "touchcloud/library_versions.hpp"
 
 namespace touchcloud::gp {
+
+// Recorded in summary.json's versions when this library is loaded.
+namespace {
+const LibraryVersion ceres_version("ceres", CERES_VERSION_STRING);
+}  // namespace
 
 void SearchOptions::validate() const {
   auto fail = [](const std::string& what) { throw InputError("GP hyperparameter search: " + what); };

@@ -25,7 +25,6 @@ class DotBackground {
   DotBackground(bool dark_dots, int window_px);
 
   void estimate(const cv::Mat& grey);  // CV_8UC1
-  const cv::Mat& shrunk_background() const { return small_background_; }
   int scale() const { return scale_; }
 
   // The pixels of row y of `grey` (the image estimate() saw) whose contrast

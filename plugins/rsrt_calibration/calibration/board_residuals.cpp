@@ -123,13 +123,6 @@ void board_residuals(const BoardRays& rays, const std::vector<Eigen::Vector3d>& 
   }
 }
 
-double mean_edge_error_mm(const BoardRays& rays, const std::vector<Eigen::Vector3d>& p, double square_mm) {
-  if (rays.edges.empty()) return 0;
-  double sum = 0;
-  for (const auto& [i, j] : rays.edges) sum += std::abs((p[j] - p[i]).norm() - square_mm);
-  return sum / static_cast<double>(rays.edges.size());
-}
-
 double board_tilt_deg(const std::vector<Eigen::Vector3d>& points_mm, const Eigen::Vector3d& plate_normal) {
   if (points_mm.size() < 3) return 0;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();

@@ -71,8 +71,6 @@ bool triangulate_board(const BoardRays& rays, const optics::RefractivePlate& pla
 void board_residuals(const BoardRays& rays, const std::vector<Eigen::Vector3d>& points_mm, double square_mm,
                      double* residuals);
 
-// Mean |distance - square_mm| over the edges: the "mean corner-distance error".
-double mean_edge_error_mm(const BoardRays& rays, const std::vector<Eigen::Vector3d>& points_mm, double square_mm);
 
 // The angle (deg) between the board's best-fit plane and the plate.
 double board_tilt_deg(const std::vector<Eigen::Vector3d>& points_mm, const Eigen::Vector3d& plate_normal);

@@ -9,8 +9,15 @@
 #include "calibration/normal_chart.hpp"
 #include "calibration/parameter_spread.hpp"
 #include "touchcloud/error.hpp"
+#include <ceres/version.h>
+#include "touchcloud/library_versions.hpp"
 
 namespace touchcloud::calibration {
+
+// Recorded in summary.json's versions when this library is loaded.
+namespace {
+const LibraryVersion ceres_version("ceres", CERES_VERSION_STRING);
+}  // namespace
 
 namespace {
 

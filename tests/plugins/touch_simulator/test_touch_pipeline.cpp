@@ -191,6 +191,11 @@ TEST_F(TouchPipeline, RobotParametersOverrideTheScene) {
   const std::string yaml = loop(kTarget, kFromContact, kContactStage);
   const RunResult r = run(yaml, 1, {{"sim.press_depth_mm", "3.0"}});
   EXPECT_NEAR(metric(r, "sim.press_travel_mm"), 7.0, 1e-9);
+  // What the run used is recorded: the override, and the scene's value for
+  // each robot parameter left not set (the scene sets safe_clearance_mm).
+  const auto& used = r.record.used.at("sim");
+  EXPECT_EQ(used.at("press_depth_mm"), ParamValue(3.0));
+  EXPECT_EQ(used.at("safe_clearance_mm"), ParamValue(2.1));
   try {
     run(yaml, 1, {{"sim.press_depth_mm", "-0.5"}});
     FAIL() << "a negative press depth was accepted";

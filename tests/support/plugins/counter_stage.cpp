@@ -23,6 +23,7 @@ class CounterStage final : public touchcloud::Stage {
     p.add("check_ms", check_ms_, 0).at_least(0).unit("ms").doc("time its check hook takes (as a data file's loading)");
   }
   void on_check(touchcloud::RunContext&) override {
+    ++checks_;
     std::this_thread::sleep_for(std::chrono::milliseconds(check_ms_));
   }
   void declare_ports(touchcloud::PortSet& ports) override {
@@ -44,10 +45,11 @@ class CounterStage final : public touchcloud::Stage {
   }
   void on_finish(touchcloud::RunContext& ctx) override {
     ctx.metric("calls", calls_, "calls");
+    ctx.metric("checks", checks_, "calls");
     ctx.metric("done_computed", done_computed_, "calls");
     ctx.metric("random_draw", static_cast<double>(ctx.rng()() % 1000000));
   }
-  int calls_ = 0, done_computed_ = 0;
+  int calls_ = 0, done_computed_ = 0, checks_ = 0;
 };
 }  // namespace
 

@@ -9,7 +9,6 @@
 namespace touchcloud {
 
 enum class Frame { Camera, Sensor, Base };
-const char* to_string(Frame frame);
 
 // Pose of the sensor in the robot base frame {B}; translation in mm.
 struct SensorPose {

@@ -47,6 +47,8 @@
 namespace {
 
 using namespace touchcloud;
+using namespace touchcloud::gp_surface;
+using namespace touchcloud::next_touch;
 
 constexpr Eigen::Index kTrainingPoints = 2000;
 constexpr Eigen::Index kTouchPoints = 60;
@@ -156,14 +158,14 @@ std::vector<Samples> touches() {
 
 // Hyperparameters as selected for the fox mask at this size (fixed, so that
 // the update benchmark does not depend on the optimiser).
-const gp::Hyperparameters kFoxMask{40.0, 9.0, 0.003};
+const gp_surface::Hyperparameters kFoxMask{40.0, 9.0, 0.003};
 
 void BM_TouchUpdateAndChoice(benchmark::State& state) {
-  gp::ExactGpOptions options;
+  gp_surface::ExactGpOptions options;
   if (state.range(0) == 0) options.max_cached_candidates = 0;
   const Samples& s = samples();
   const std::vector<Samples> batch = touches();
-  auto base = std::make_shared<gp::ExactGp>(gp::KernelKind::rbf, kFoxMask, options);
+  auto base = std::make_shared<gp_surface::ExactGp>(gp_surface::KernelKind::rbf, kFoxMask, options);
   // Touches take n from 2,000 - 4 x 60 to 2,000 + 4 x 60: 2,000 on average.
   const Eigen::Index n0 = kTrainingPoints - kTouches * kTouchPoints / 2;
   base->fit(s.xy.topRows(n0), s.z.head(n0));
@@ -174,23 +176,23 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
   const Eigen::VectorXd grid_xs = Eigen::VectorXd::LinSpaced(200, grid.x_mm[0], grid.x_mm[1]);
   const Eigen::VectorXd grid_ys = Eigen::VectorXd::LinSpaced(200, grid.y_mm[0], grid.y_mm[1]);
 
-  std::shared_ptr<const gp::ExactGp> current;
+  std::shared_ptr<const gp_surface::ExactGp> current;
   int touch = kTouches;
   double paths = 0;
   for (auto _ : state) {
     if (touch == kTouches) {  // back to n = 2,000 on a store of its own
       state.PauseTiming();
-      auto fresh = std::make_shared<gp::ExactGp>(*base);
+      auto fresh = std::make_shared<gp_surface::ExactGp>(*base);
       fresh->reserve(fresh->capacity() + 1);
       current = fresh;
       touch = 0;
       state.ResumeTiming();
     }
     // As the gp_surface stage does: the previous snapshot stays unchanged.
-    auto next = std::make_shared<gp::ExactGp>(*current);
-    const gp::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
+    auto next = std::make_shared<gp_surface::ExactGp>(*current);
+    const gp_surface::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
                                                      batch[static_cast<std::size_t>(touch)].z);
-    paths += report.path == gp::UpdatePath::bordered ? 1 : 0;
+    paths += report.path == gp_surface::UpdatePath::bordered ? 1 : 0;
     const VarianceChoice choice = max_variance_cell(GpSurfaceModel(next), grid, 1);
     benchmark::DoNotOptimize(choice.cell);
     if (state.range(0) == 2) benchmark::DoNotOptimize(next->mean_on_grid(grid_xs, grid_ys).sum());
@@ -204,20 +206,20 @@ BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMil
 
 void BM_ModelSelection(benchmark::State& state) {
   const Samples data = selection_data();
-  gp::SearchOptions options;
+  gp_surface::SearchOptions options;
   if (state.range(0) == 0) {  // benchmarks/peers/gp_sklearn.py's start: var(z), 10 mm, var(z) / 100
     const double var_z = (data.z.array() - data.z.mean()).square().mean();
     options.start_hyperparameters = {{var_z, 10.0, var_z / 100.0}};
   }
   if (state.range(0) == 2) {  // as between touches: the optimum and curvature on 90 % of the points
     const Eigen::Index earlier = data.xy.rows() * 9 / 10;
-    const gp::SearchResult previous = gp::select_hyperparameters(data.xy.topRows(earlier), data.z.head(earlier));
+    const gp_surface::SearchResult previous = gp_surface::select_hyperparameters(data.xy.topRows(earlier), data.z.head(earlier));
     options.start_hyperparameters = {previous.hyperparameters};
     options.start_hessian_per_point = previous.hessian_per_point;
   }
-  gp::SearchResult r;
+  gp_surface::SearchResult r;
   for (auto _ : state) {
-    r = gp::select_hyperparameters(data.xy, data.z, options);
+    r = gp_surface::select_hyperparameters(data.xy, data.z, options);
     benchmark::DoNotOptimize(r.lml);
   }
   state.counters["n"] = static_cast<double>(data.xy.rows());
@@ -249,14 +251,14 @@ int write_data(const std::string& dir) {
 }
 
 int print_lml(const std::string& spec) {
-  gp::Hyperparameters h;
+  gp_surface::Hyperparameters h;
   if (std::sscanf(spec.c_str(), "%lf,%lf,%lf", &h.signal_variance_mm2, &h.lengthscale_mm, &h.noise_variance_mm2) != 3) {
     std::cerr << "bench_gp: --lml-at wants S2,L,NOISE (mm^2, mm, mm^2), got " << spec << "\n";
     return 2;
   }
   const Samples data = selection_data();
-  gp::MarginalLikelihood lml(gp::KernelKind::rbf, data.xy, data.z);
-  const gp::LmlEvaluation e = lml.evaluate(h, false);
+  gp_surface::MarginalLikelihood lml(gp_surface::KernelKind::rbf, data.xy, data.z);
+  const gp_surface::LmlEvaluation e = lml.evaluate(h, false);
   std::printf("{\"lml\": %.17g, \"jitter_mm2\": %.17g, \"n\": %ld}\n", e.lml, e.factorisation.jitter_mm2,
               static_cast<long>(data.xy.rows()));
   return 0;
@@ -280,8 +282,8 @@ int main(int argc, char** argv) {
     std::cerr << "bench_gp: " << e.what() << "\n";
     return 1;
   }
-  benchmark::AddCustomContext("gp_linear_algebra", gp::factor_algebra_backend());
-  benchmark::AddCustomContext("gp_vector_exp", gp::vector_exp_path());
+  benchmark::AddCustomContext("gp_linear_algebra", gp_surface::factor_algebra_backend());
+  benchmark::AddCustomContext("gp_vector_exp", gp_surface::vector_exp_path());
   int rest_argc = static_cast<int>(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());
   if (benchmark::ReportUnrecognizedArguments(rest_argc, rest.data())) return 2;

@@ -5,7 +5,7 @@
 // image; counters give each method's recall (of markers whose dot lies fully
 // in the image), mean centre error and false detections over all four images.
 //
-//   Detector            one image, touchcloud_marker_detector
+//   Detector            one image, touchcloud_marker_detection_lib
 //   SimpleBlobDetector  one image, cv::SimpleBlobDetector
 //   DetectorStereoFrame both images of a frame, input checks included
 //
@@ -24,7 +24,7 @@ namespace {
 
 struct Image {
   const cv::Mat* pixels;
-  const sim::ViewPixels* truth;
+  const touch_simulator::ViewPixels* truth;
 };
 
 const std::vector<test::RenderedFrame>& frames() {

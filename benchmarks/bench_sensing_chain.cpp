@@ -23,13 +23,13 @@ using namespace touchcloud;
 
 namespace {
 
-const sim::Scene& scene() {
-  static const sim::Scene s = [] {
-    sim::Scene scene =
-        sim::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
-    scene.effects = sim::EffectSet();
-    for (auto e : {sim::Effect::Contact, sim::Effect::Refraction, sim::Effect::Render, sim::Effect::PixelNoise,
-                   sim::Effect::Blur})
+const touch_simulator::Scene& scene() {
+  static const touch_simulator::Scene s = [] {
+    touch_simulator::Scene scene =
+        touch_simulator::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
+    scene.effects = touch_simulator::EffectSet();
+    for (auto e : {touch_simulator::Effect::Contact, touch_simulator::Effect::Refraction, touch_simulator::Effect::Render, touch_simulator::Effect::PixelNoise,
+                   touch_simulator::Effect::Blur})
       scene.effects.add(e);
     scene.effect_parameters.noise_sigma_grey = 2.0;
     scene.effect_parameters.blur_sigma_px = 0.9;
@@ -41,7 +41,7 @@ const sim::Scene& scene() {
 // Frames of one touch at (10, 5) mm, up to 4 mm past first contact.
 const std::vector<StereoFramePtr>& touch_frames() {
   static const std::vector<StereoFramePtr> frames = [] {
-    sim::TouchSimulation sim(scene(), 1);
+    touch_simulator::TouchSimulation sim(scene(), 1);
     std::vector<StereoFramePtr> out;
     for (int i = 0; i < 200; ++i) {
       const auto& f = sim.step({10, 5}, false);
@@ -58,9 +58,9 @@ void SensingChainPerFrame(benchmark::State& state) {
   const sensor::GelStereoSensor& sensor = scene().sensor;
   const optics::StereoRig rig = sensor::make_stereo_rig(sensor, true, false);
   StereoMarkerDetector detector{MarkerDetectorOptions{}};
-  matching::StereoMarkerTracker tracker(
-      matching::RestingGelMatcher(rig, sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()), {});
-  rsrt::MarkerTriangulator triangulator(rig, sensor.sensor_from_left_camera(), true, 0.5);
+  marker_matching::StereoMarkerTracker tracker(
+      marker_matching::RestingGelMatcher(rig, sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()), {});
+  rsrt_triangulation::MarkerTriangulator triangulator(rig, sensor.sensor_from_left_camera(), true, 0.5);
   // The reference frame, outside the timing.
   triangulator.triangulate(tracker.process(detector.detect(frames.front())));
 

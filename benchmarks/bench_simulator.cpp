@@ -13,7 +13,7 @@
 
 #include "touch_simulation.hpp"
 
-using namespace touchcloud::sim;
+using namespace touchcloud::touch_simulator;
 
 namespace {
 

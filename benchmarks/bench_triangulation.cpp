@@ -32,9 +32,9 @@ struct PairData {
 const PairData& pairs() {
   static const PairData data = [] {
     PairData d;
-    sim::Scene scene =
-        sim::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
-    sim::TouchSimulation sim(scene, 1);
+    touch_simulator::Scene scene =
+        touch_simulator::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
+    touch_simulator::TouchSimulation sim(scene, 1);
     for (int i = 0; i < 30; ++i) sim.step({10, 5}, false);  // pressed into the mask
     const MarkerSet set = sim.marker_set();
     const Eigen::Isometry3d left_from_sensor = sim.optics().left_from_sensor();

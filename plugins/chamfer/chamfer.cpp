@@ -116,7 +116,7 @@ class Chamfer final : public Stage {
   void on_finish(RunContext& ctx) override {
     if (history_.empty()) return;
     ctx.metric("final_chamfer_mm", history_.back(), "mm");
-    ctx.metric("convergence_touches", convergence_touches(history_, 0.05), "touches");
+    ctx.metric("convergence_touches", chamfer::convergence_touches(history_, 0.05), "touches");
   }
 
   std::vector<double> history_;

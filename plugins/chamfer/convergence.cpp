@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace touchcloud {
+namespace touchcloud::chamfer {
 
 int convergence_touches(const std::vector<double>& scores, double tolerance) {
   if (scores.empty()) return 0;
@@ -12,4 +12,4 @@ int convergence_touches(const std::vector<double>& scores, double tolerance) {
   return static_cast<int>(first) + 1;
 }
 
-}  // namespace touchcloud
+}  // namespace touchcloud::chamfer

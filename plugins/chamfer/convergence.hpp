@@ -5,11 +5,11 @@
 
 #include <vector>
 
-namespace touchcloud {
+namespace touchcloud::chamfer {
 
 // 1-based count of touches after which every later score is within
 // `tolerance` (relative) of the last one; scores.size() when only the last is.
 // 0 for no scores.
 int convergence_touches(const std::vector<double>& scores, double tolerance = 0.05);
 
-}  // namespace touchcloud
+}  // namespace touchcloud::chamfer

@@ -25,7 +25,7 @@ class CheckerboardPress final : public Stage {
   Eigen::Isometry3d left_from_sensor_ = Eigen::Isometry3d::Identity();
   double gel_radius_mm_ = 0;
   sensor::Checkerboard board_;
-  std::vector<board_press::BoardPose> poses_;
+  std::vector<checkerboard_press::BoardPose> poses_;
   std::size_t next_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
@@ -81,13 +81,13 @@ class CheckerboardPress final : public Stage {
     gel_radius_mm_ = sensor.gel.radius_mm();
     poses_.clear();
     for (std::size_t i = 0; i + 2 < presses_.size(); i += 3) {
-      board_press::BoardPose pose;
+      checkerboard_press::BoardPose pose;
       pose.tilt_deg = {presses_[i], presses_[i + 1]};
       pose.depth_mm = presses_[i + 2];
       poses_.push_back(pose);
     }
     if (poses_.empty())
-      poses_ = board_press::random_board_poses(random_presses_, max_tilt_deg_,
+      poses_ = checkerboard_press::random_board_poses(random_presses_, max_tilt_deg_,
                                                {depth_range_mm_[0], depth_range_mm_[1]}, ctx.rng());
     next_ = 0;
   }
@@ -98,8 +98,8 @@ class CheckerboardPress final : public Stage {
                            "all " + std::to_string(poses_.size()) + " presses are used; end the loop with "
                            "'until: <this stage>.last_press' or fewer max_iterations");
     const auto& pose = poses_[next_];
-    const auto corners = board_press::board_corners_sensor(board_, pose, gel_radius_mm_);
-    const auto set = board_press::image_press(*rig_, left_from_sensor_, corners, gel_radius_mm_,
+    const auto corners = checkerboard_press::board_corners_sensor(board_, pose, gel_radius_mm_);
+    const auto set = checkerboard_press::image_press(*rig_, left_from_sensor_, corners, gel_radius_mm_,
                                               {noise_px_, min_height_mm_}, ctx.rng());
     std::ostringstream s;
     s << "press " << next_ << ": tilt [" << pose.tilt_deg.x() << ", " << pose.tilt_deg.y() << "] deg, depth "

@@ -8,7 +8,7 @@ namespace touchcloud {
 class Dedup final : public Stage {
   double threshold_mm_ = 1.8;
   bool enabled_ = true;
-  std::unique_ptr<OverlapFilter> filter_;
+  std::unique_ptr<dedup::OverlapFilter> filter_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("threshold_mm", threshold_mm_, 1.8).unit("mm").above(0.0)
@@ -20,7 +20,7 @@ class Dedup final : public Stage {
     ports.output<CloudConstPtr>("accumulated", "every point kept so far");
     ports.output<CloudConstPtr>("added", "the points this touch added");
   }
-  void on_configure(RunContext&) override { filter_ = std::make_unique<OverlapFilter>(threshold_mm_); }
+  void on_configure(RunContext&) override { filter_ = std::make_unique<dedup::OverlapFilter>(threshold_mm_); }
 
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");

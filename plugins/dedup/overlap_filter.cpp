@@ -1,6 +1,6 @@
 #include "overlap_filter.hpp"
 
-namespace touchcloud {
+namespace touchcloud::dedup {
 
 CloudPtr OverlapFilter::add(const PointCloud& touch) {
   auto added = std::make_shared<PointCloud>();
@@ -27,4 +27,4 @@ CloudPtr OverlapFilter::add_all(const PointCloud& touch) {
   return added;
 }
 
-}  // namespace touchcloud
+}  // namespace touchcloud::dedup

@@ -9,7 +9,7 @@
 
 #include "touchcloud/types/point_cloud.hpp"
 
-namespace touchcloud {
+namespace touchcloud::dedup {
 
 class OverlapFilter {
  public:
@@ -28,4 +28,4 @@ class OverlapFilter {
   pcl::KdTreeFLANN<pcl::PointXYZ> index_;  // over kept_, rebuilt after each touch
 };
 
-}  // namespace touchcloud
+}  // namespace touchcloud::dedup

@@ -30,7 +30,7 @@ namespace touchcloud {
 
 class GpSurface final : public Stage {
   enum class Method { Exact, Sparse };
-  gp::KernelKind kernel_ = gp::KernelKind::rbf;
+  gp_surface::KernelKind kernel_ = gp_surface::KernelKind::rbf;
   Method method_ = Method::Exact;
   int inducing_points_ = 500;
   int selection_points_ = 0;
@@ -43,16 +43,16 @@ class GpSurface final : public Stage {
 
   Eigen::MatrixX2d xy_{0, 2};
   Eigen::VectorXd z_;
-  std::shared_ptr<const gp::ExactGp> gp_;  // method exact
+  std::shared_ptr<const gp_surface::ExactGp> gp_;  // method exact
   SurfaceModelPtr sparse_;                  // method sparse: the last fit
-  std::shared_ptr<const GpSurfaceModel> exact_surface_;  // method exact: the last output
+  std::shared_ptr<const gp_surface::GpSurfaceModel> exact_surface_;  // method exact: the last output
   Eigen::Index selected_at_ = 0;  // training size at the last selection (0: none yet)
-  gp::Hyperparameters last_;
+  gp_surface::Hyperparameters last_;
   Eigen::Matrix2d last_curvature_ = Eigen::Matrix2d::Zero();  // its hessian_per_point, for the next warm start
   int selections_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("kernel", kernel_, gp::KernelKind::rbf, {{"rbf", gp::KernelKind::rbf}, {"matern52", gp::KernelKind::matern52}})
+    p.add("kernel", kernel_, gp_surface::KernelKind::rbf, {{"rbf", gp_surface::KernelKind::rbf}, {"matern52", gp_surface::KernelKind::matern52}})
         .doc("covariance function");
     p.add("method", method_, Method::Exact, {{"exact", Method::Exact}, {"sparse", Method::Sparse}})
         .doc("exact GP, or the sparse VFE approximation on inducing points");
@@ -72,14 +72,14 @@ class GpSurface final : public Stage {
     p.add("max_noise_mm", max_noise_mm_, 1.0).unit("mm").above(0.0)
         .doc("largest noise standard deviation model selection may choose (touch points are accurate to a few "
              "tenths of a mm); keeps few or rough points from being explained as noise around a flat mean");
-    p.add("blas_threads", blas_threads_).at_least(1).unit("threads").needs("OpenBLAS", gp::factor_algebra_threads_settable())
+    p.add("blas_threads", blas_threads_).at_least(1).unit("threads").needs("OpenBLAS", gp_surface::factor_algebra_threads_settable())
         .doc("threads of the factorisations and solves (OpenBLAS: one count for the whole process); not set: "
              "OpenBLAS's own, a thread per core; 1 leaves the other cores to background stages");
   }
   void on_configure(RunContext& ctx) override {
-    gp::set_factor_algebra_threads(blas_threads_.value_or(0));
-    ctx.used("blas_threads", static_cast<std::int64_t>(gp::factor_algebra_threads()));
-    ctx.used("dense_algebra", std::string(gp::factor_algebra_backend()));
+    gp_surface::set_factor_algebra_threads(blas_threads_.value_or(0));
+    ctx.used("blas_threads", static_cast<std::int64_t>(gp_surface::factor_algebra_threads()));
+    ctx.used("dense_algebra", std::string(gp_surface::factor_algebra_backend()));
   }
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
@@ -98,7 +98,7 @@ class GpSurface final : public Stage {
       xy.row(i) << p.x, p.y;
       z[i] = p.z;
     }
-    gp::check_training(xy, z, "point of this touch");
+    gp_surface::check_training(xy, z, "point of this touch");
     const Eigen::Index n0 = xy_.rows();
     xy_.conservativeResize(n0 + k, 2);
     z_.conservativeResize(n0 + k);
@@ -109,7 +109,7 @@ class GpSurface final : public Stage {
   // Hyperparameters for all the points, from a subset when asked; warm-started
   // (with the last selection's curvature) after the first.
   void select(RunContext& ctx) {
-    gp::SearchOptions options;
+    gp_surface::SearchOptions options;
     options.kernel = kernel_;
     options.screening_points = screening_points_;
     options.bounds.noise_sd_max = max_noise_mm_;
@@ -123,8 +123,8 @@ class GpSurface final : public Stage {
     const Eigen::Index limit = selection_points_ > 0 ? selection_points_ : (method_ == Method::Sparse ? inducing_points_ : n);
     // Runs of consecutive points (parts of single touches) spread evenly
     // over the data keep the touches' point density (gp/point_subset.hpp).
-    const auto [sub_xy, sub_z] = gp::subset_of_runs(xy_, z_, limit, selection_runs_);
-    const gp::SearchResult r = gp::select_hyperparameters(sub_xy, sub_z, options);
+    const auto [sub_xy, sub_z] = gp_surface::subset_of_runs(xy_, z_, limit, selection_runs_);
+    const gp_surface::SearchResult r = gp_surface::select_hyperparameters(sub_xy, sub_z, options);
     last_ = r.hyperparameters;
     last_curvature_ = r.hessian_per_point;
     selected_at_ = n;
@@ -132,29 +132,29 @@ class GpSurface final : public Stage {
     ctx.metric("lml", r.lml);
     ctx.metric("selection_points", static_cast<double>(std::min(limit, n)), "points");
     int evaluations = r.evaluations;
-    for (const gp::StartReport& start : r.screening) evaluations += start.evaluations;
-    for (const gp::StartReport& level : r.refinement) evaluations += level.evaluations;
+    for (const gp_surface::StartReport& start : r.screening) evaluations += start.evaluations;
+    for (const gp_surface::StartReport& level : r.refinement) evaluations += level.evaluations;
     ctx.metric("selection_evaluations", evaluations);
     ctx.metric("selection_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), "s");
   }
 
-  void fit_exact(const gp::Hyperparameters& h) {
-    auto model = std::make_shared<gp::ExactGp>(kernel_, h);
+  void fit_exact(const gp_surface::Hyperparameters& h) {
+    auto model = std::make_shared<gp_surface::ExactGp>(kernel_, h);
     model->fit(xy_, z_);
     gp_ = model;
   }
 
-  SurfaceModelPtr fit_sparse(const gp::Hyperparameters& h, RunContext& ctx) {
+  SurfaceModelPtr fit_sparse(const gp_surface::Hyperparameters& h, RunContext& ctx) {
     const Eigen::Index n = xy_.rows();
     const Eigen::Index first = std::uniform_int_distribution<Eigen::Index>(0, n - 1)(ctx.rng());
-    const std::vector<Eigen::Index> rows = gp::farthest_point_subset(xy_, inducing_points_, first);
+    const std::vector<Eigen::Index> rows = gp_surface::farthest_point_subset(xy_, inducing_points_, first);
     Eigen::MatrixX2d inducing(static_cast<Eigen::Index>(rows.size()), 2);
     for (std::size_t i = 0; i < rows.size(); ++i) inducing.row(static_cast<Eigen::Index>(i)) = xy_.row(rows[i]);
-    auto model = std::make_shared<gp::SparseVfeGp>(kernel_, h);
+    auto model = std::make_shared<gp_surface::SparseVfeGp>(kernel_, h);
     model->fit(xy_, z_, inducing);
     ctx.metric("inducing_points", static_cast<double>(inducing.rows()), "points");
     ctx.metric("vfe_bound", model->log_marginal_likelihood_bound());
-    return std::make_shared<SparseSurfaceModel>(model);
+    return std::make_shared<gp_surface::SparseSurfaceModel>(model);
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -165,7 +165,7 @@ class GpSurface final : public Stage {
     const Eigen::Index n = xy_.rows();
     constexpr Eigen::Index kMinSelectionPoints = 3;
     double path = 0;  // 0 unchanged, 1 bordered update, 2 refactorised, 3 hyperparameters selected
-    gp::Hyperparameters h = last_;
+    gp_surface::Hyperparameters h = last_;
     if (n < kMinSelectionPoints) {
       // Too few points to select hyperparameters: a GP at set values.
       h = {};
@@ -178,9 +178,9 @@ class GpSurface final : public Stage {
       if (method_ == Method::Exact) fit_exact(h);
       path = 3;
     } else if (method_ == Method::Exact && n > n0) {
-      auto model = std::make_shared<gp::ExactGp>(*gp_);  // shares the factor; the previous output stays as it was
-      const gp::UpdateReport report = model->add_points(xy_.bottomRows(n - n0), z_.tail(n - n0));
-      path = report.path == gp::UpdatePath::bordered ? 1 : 2;
+      auto model = std::make_shared<gp_surface::ExactGp>(*gp_);  // shares the factor; the previous output stays as it was
+      const gp_surface::UpdateReport report = model->add_points(xy_.bottomRows(n - n0), z_.tail(n - n0));
+      path = report.path == gp_surface::UpdatePath::bordered ? 1 : 2;
       if (!report.reason.empty()) ctx.log("refactorised: " + report.reason);
       gp_ = model;
     }
@@ -193,7 +193,7 @@ class GpSurface final : public Stage {
       ctx.metric("jitter_mm2", gp_->factorisation().jitter_mm2, "mm^2");
       // An unchanged fit goes out as the same model, which later stages may
       // recognise and not evaluate again.
-      if (!exact_surface_ || exact_surface_->gp() != gp_) exact_surface_ = std::make_shared<GpSurfaceModel>(gp_);
+      if (!exact_surface_ || exact_surface_->gp() != gp_) exact_surface_ = std::make_shared<gp_surface::GpSurfaceModel>(gp_);
       surface = exact_surface_;
     }
     ctx.metric("training_points", static_cast<double>(n), "points");

@@ -1,6 +1,6 @@
 #include "gp_surface_model.hpp"
 
-namespace touchcloud {
+namespace touchcloud::gp_surface {
 
 std::map<std::string, double> GpSurfaceModel::hyperparameters() const {
   auto named = gp_->hyperparameters().named();
@@ -8,4 +8,4 @@ std::map<std::string, double> GpSurfaceModel::hyperparameters() const {
   return named;
 }
 
-}  // namespace touchcloud
+}  // namespace touchcloud::gp_surface

@@ -7,11 +7,11 @@
 #include "gp/exact_gp.hpp"
 #include "touchcloud/types/surface_model.hpp"
 
-namespace touchcloud {
+namespace touchcloud::gp_surface {
 
 class GpSurfaceModel final : public SurfaceModel {
  public:
-  explicit GpSurfaceModel(std::shared_ptr<const gp::ExactGp> gp) : gp_(std::move(gp)) {}
+  explicit GpSurfaceModel(std::shared_ptr<const gp_surface::ExactGp> gp) : gp_(std::move(gp)) {}
   std::size_t training_size() const override { return static_cast<std::size_t>(gp_->size()); }
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return gp_->mean(xy); }
   Eigen::MatrixXd mean_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const override {
@@ -19,10 +19,10 @@ class GpSurfaceModel final : public SurfaceModel {
   }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
   std::map<std::string, double> hyperparameters() const override;
-  const std::shared_ptr<const gp::ExactGp>& gp() const { return gp_; }
+  const std::shared_ptr<const gp_surface::ExactGp>& gp() const { return gp_; }
 
  private:
-  std::shared_ptr<const gp::ExactGp> gp_;
+  std::shared_ptr<const gp_surface::ExactGp> gp_;
 };
 
-}  // namespace touchcloud
+}  // namespace touchcloud::gp_surface

@@ -1,6 +1,6 @@
 #include "sparse_surface_model.hpp"
 
-namespace touchcloud {
+namespace touchcloud::gp_surface {
 
 std::map<std::string, double> SparseSurfaceModel::hyperparameters() const {
   auto named = gp_->hyperparameters().named();
@@ -9,4 +9,4 @@ std::map<std::string, double> SparseSurfaceModel::hyperparameters() const {
   return named;
 }
 
-}  // namespace touchcloud
+}  // namespace touchcloud::gp_surface

@@ -11,10 +11,10 @@ namespace touchcloud {
 
 class MarkerMatching final : public Stage {
   sensor::SensorParameters sensor_;
-  matching::TrackerGates gates_;
+  marker_matching::TrackerGates gates_;
   sensor::GelStereoSensor sensor_read_;  // read at check
 
-  std::unique_ptr<matching::StereoMarkerTracker> tracker_;
+  std::unique_ptr<marker_matching::StereoMarkerTracker> tracker_;
   std::size_t frames_ = 0;
   std::size_t fewest_matched_ = std::numeric_limits<std::size_t>::max();
   double matched_sum_ = 0, left_only_sum_ = 0, right_only_sum_ = 0;
@@ -40,8 +40,8 @@ class MarkerMatching final : public Stage {
 
   void on_configure(RunContext&) override {
     const auto& sensor = sensor_read_;
-    tracker_ = std::make_unique<matching::StereoMarkerTracker>(
-        matching::RestingGelMatcher(sensor_.rig(sensor, true),
+    tracker_ = std::make_unique<marker_matching::StereoMarkerTracker>(
+        marker_matching::RestingGelMatcher(sensor_.rig(sensor, true),
                                     sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()),
         gates_);
   }

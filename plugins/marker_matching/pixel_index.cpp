@@ -4,7 +4,7 @@
 
 #include <nanoflann.hpp>
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 namespace {
 
@@ -47,4 +47,4 @@ Nearest PixelIndex::nearest(const Eigen::Vector2d& pixel, double gate_px) const 
   return {static_cast<int>(index), std::sqrt(squared)};
 }
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

@@ -9,7 +9,7 @@
 
 #include "touchcloud/types/marker_set.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 struct Nearest {
   int index = -1;            // into the indexed markers; -1: none within the gate
@@ -32,4 +32,4 @@ class PixelIndex {
   std::unique_ptr<Tree> tree_;
 };
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

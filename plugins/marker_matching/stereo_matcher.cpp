@@ -5,7 +5,7 @@
 
 #include "pixel_index.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 RestingGelMatcher::RestingGelMatcher(optics::StereoRig rig, const Eigen::Isometry3d& left_from_sensor,
                                      double gel_radius_mm)
@@ -48,4 +48,4 @@ std::vector<MarkerMatch> RestingGelMatcher::match(const std::vector<Marker>& lef
   return matches;
 }
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

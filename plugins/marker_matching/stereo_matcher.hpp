@@ -13,7 +13,7 @@
 #include "touchcloud/optics/stereo_rig.hpp"
 #include "touchcloud/types/marker_set.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 class RestingGelMatcher {
  public:
@@ -34,4 +34,4 @@ class RestingGelMatcher {
   double gel_radius_mm_;
 };
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

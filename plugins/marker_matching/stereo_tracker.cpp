@@ -5,7 +5,7 @@
 #include "touchcloud/error.hpp"
 #include "touchcloud/parameters.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 StereoMarkerTracker::StereoMarkerTracker(RestingGelMatcher matcher, TrackerGates gates)
     : matcher_(std::move(matcher)), gates_(gates) {}
@@ -83,4 +83,4 @@ MarkerSet StereoMarkerTracker::track(const MarkerSet& in) {
   return out;
 }
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

@@ -13,7 +13,7 @@
 #include "stereo_matcher.hpp"
 #include "view_tracker.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 struct TrackerGates {
   double match_gate_px = 4.0;  // reference: right marker within this of its predicted pixel
@@ -46,4 +46,4 @@ class StereoMarkerTracker {
   std::size_t reference_pairs_ = 0, joined_ = 0;
 };
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

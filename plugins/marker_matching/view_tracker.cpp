@@ -4,7 +4,7 @@
 
 #include "pixel_index.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 namespace {
 
@@ -67,4 +67,4 @@ std::vector<int> ViewTracker::update(const std::vector<Marker>& detections, doub
   return id_of;
 }
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

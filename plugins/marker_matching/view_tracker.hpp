@@ -15,7 +15,7 @@
 
 #include "touchcloud/types/marker_set.hpp"
 
-namespace touchcloud::matching {
+namespace touchcloud::marker_matching {
 
 class ViewTracker {
  public:
@@ -32,4 +32,4 @@ class ViewTracker {
   std::vector<Eigen::Vector2d> rest_px_, last_px_;
 };
 
-}  // namespace touchcloud::matching
+}  // namespace touchcloud::marker_matching

@@ -38,9 +38,9 @@ class NextTouch final : public Stage {
     const SurfaceModelPtr* surface = io.optional_input<SurfaceModelPtr>("surface");
     TouchTarget target;
     if (calls_ < initial_random_ || strategy_ == Strategy::Random || !surface || !*surface) {
-      target.grid_index = random_cell(grid_, touched_, ctx.rng());
+      target.grid_index = next_touch::random_cell(grid_, touched_, ctx.rng());
     } else {
-      const VarianceChoice choice = max_variance_cell(**surface, grid_, oversample_, revisit_ ? std::set<int>{} : touched_);
+      const next_touch::VarianceChoice choice = next_touch::max_variance_cell(**surface, grid_, oversample_, revisit_ ? std::set<int>{} : touched_);
       target.grid_index = choice.cell;
       target.exploratory = true;
       ctx.metric("chosen_variance", choice.variance_mm2, "mm^2");

@@ -5,7 +5,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud {
+namespace touchcloud::next_touch {
 
 VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGrid& grid, int oversample,
                                  const std::set<int>& avoid) {
@@ -38,4 +38,4 @@ int random_cell(const WorkspaceGrid& grid, const std::set<int>& avoid, std::mt19
   return free[std::uniform_int_distribution<std::size_t>(0, free.size() - 1)(rng)];
 }
 
-}  // namespace touchcloud
+}  // namespace touchcloud::next_touch

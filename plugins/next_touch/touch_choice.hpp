@@ -10,7 +10,7 @@
 #include "touchcloud/types/touch.hpp"
 #include "touchcloud/types/workspace.hpp"
 
-namespace touchcloud {
+namespace touchcloud::next_touch {
 
 struct VarianceChoice {
   int cell = -1;
@@ -27,4 +27,4 @@ VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGri
 // A random cell not in `avoid` (any cell once all are used).
 int random_cell(const WorkspaceGrid& grid, const std::set<int>& avoid, std::mt19937_64& rng);
 
-}  // namespace touchcloud
+}  // namespace touchcloud::next_touch

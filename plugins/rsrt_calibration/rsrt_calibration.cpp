@@ -15,15 +15,15 @@ namespace touchcloud {
 class RsrtCalibration final : public Stage {
   sensor::SensorParameters sensor_;
   std::string output_;
-  calibration::BoardSpans distances_ = calibration::BoardSpans::AllPairs;
+  rsrt_calibration::BoardSpans distances_ = rsrt_calibration::BoardSpans::AllPairs;
   std::array<int, 2> board_corners_{};
   double square_mm_ = 4, min_board_tilt_deg_ = 5;
   bool diagonals_ = true;
   int min_corners_per_press_ = 9;
 
-  calibration::Checkerboard board_;
+  rsrt_calibration::Checkerboard board_;
   sensor::GelStereoSensor sensor_read_;  // the initial guess, read at check
-  std::vector<calibration::PressCorners> presses_;
+  std::vector<rsrt_calibration::PressCorners> presses_;
 
   void declare_parameters(ParameterSet& p) override {
     sensor_.declare(p, "the initial guess: a scene or sensor file with a 'sensor:' section (cameras known, plate "
@@ -33,10 +33,10 @@ class RsrtCalibration final : public Stage {
     p.add("square_mm", square_mm_, 4.0).unit("mm").above(0).doc("edge of one board square");
     p.add("output", output_, std::string("calibrated_sensor.yaml")).output_file()
         .doc("the calibrated sensor file, in the output folder");
-    p.add("distances", distances_, calibration::BoardSpans::AllPairs,
-          {{"all_pairs", calibration::BoardSpans::AllPairs},
-           {"rows_and_columns", calibration::BoardSpans::RowsAndColumns},
-           {"neighbours", calibration::BoardSpans::Neighbours}})
+    p.add("distances", distances_, rsrt_calibration::BoardSpans::AllPairs,
+          {{"all_pairs", rsrt_calibration::BoardSpans::AllPairs},
+           {"rows_and_columns", rsrt_calibration::BoardSpans::RowsAndColumns},
+           {"neighbours", rsrt_calibration::BoardSpans::Neighbours}})
         .doc("corner pairs whose distances are fitted; neighbours (the paper's) is biased by pixel noise");
     p.add("diagonals", diagonals_, true).doc("with rows_and_columns or neighbours: also fit the squares' diagonals");
     p.add("min_corners_per_press", min_corners_per_press_, 9).range(4, 10000)
@@ -63,7 +63,7 @@ class RsrtCalibration final : public Stage {
     const auto& markers = io.input<MarkerSetPtr>("corners");
     const std::string what = "press " + std::to_string(presses_.size()) + " (input 'corners')";
     if (!markers) throw InputError(what + ": no marker set");
-    presses_.push_back(calibration::press_corners_from(*markers, board_, what));
+    presses_.push_back(rsrt_calibration::press_corners_from(*markers, board_, what));
     ctx.metric("press_corners", static_cast<double>(presses_.back().corners.size()));
   }
 
@@ -71,12 +71,12 @@ class RsrtCalibration final : public Stage {
     if (presses_.empty()) throw InputError("no presses arrived on input 'corners': nothing to calibrate");
     sensor::GelStereoSensor sensor = sensor_read_;
     const optics::StereoRig initial = sensor_.rig(sensor, true);
-    calibration::PlateCalibrationOptions options;
+    rsrt_calibration::PlateCalibrationOptions options;
     options.spans = distances_;
     options.use_diagonals = diagonals_;
     options.min_corners_per_press = min_corners_per_press_;
     options.min_board_tilt_deg = min_board_tilt_deg_;
-    const auto result = calibration::calibrate_plate(initial, board_, presses_, options);
+    const auto result = rsrt_calibration::calibrate_plate(initial, board_, presses_, options);
 
     sensor::set_plate_from_left_frame(sensor, result.plate);
     std::ostringstream comment;

@@ -3,7 +3,7 @@
 #include "touchcloud/error.hpp"
 #include "touchcloud/optics/stereo_triangulation.hpp"
 
-namespace touchcloud::rsrt {
+namespace touchcloud::rsrt_triangulation {
 
 namespace {
 
@@ -61,4 +61,4 @@ TactileCloud MarkerTriangulator::triangulate(const MarkerSet& markers) {
   return tactile;
 }
 
-}  // namespace touchcloud::rsrt
+}  // namespace touchcloud::rsrt_triangulation

@@ -18,7 +18,7 @@
 #include "touchcloud/types/marker_set.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"
 
-namespace touchcloud::rsrt {
+namespace touchcloud::rsrt_triangulation {
 
 struct TriangulationCounts {
   // Pairs refused, indexed by optics::TriangulationStatus (Ok unused), then
@@ -50,4 +50,4 @@ class MarkerTriangulator {
   TriangulationCounts counts_;
 };
 
-}  // namespace touchcloud::rsrt
+}  // namespace touchcloud::rsrt_triangulation

@@ -13,7 +13,7 @@ class RsrtTriangulation final : public Stage {
   bool refraction_ = true;
   sensor::GelStereoSensor sensor_read_;  // read at check
   double max_gap_mm_ = 0.5;
-  std::unique_ptr<rsrt::MarkerTriangulator> triangulator_;
+  std::unique_ptr<rsrt_triangulation::MarkerTriangulator> triangulator_;
 
   void declare_parameters(ParameterSet& p) override {
     sensor_.declare(p, "sensor description: a scene or sensor file with a 'sensor:' section (e.g. from rsrt_calibration)");
@@ -32,7 +32,7 @@ class RsrtTriangulation final : public Stage {
   void on_configure(RunContext&) override {
     const auto& sensor = sensor_read_;
     // The pinhole comparison keeps the real rig and ignores its plate.
-    triangulator_ = std::make_unique<rsrt::MarkerTriangulator>(sensor_.rig(sensor, true),
+    triangulator_ = std::make_unique<rsrt_triangulation::MarkerTriangulator>(sensor_.rig(sensor, true),
                                                                sensor.sensor_from_left_camera(), refraction_,
                                                                max_gap_mm_);
   }

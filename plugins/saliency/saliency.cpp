@@ -8,13 +8,13 @@ namespace touchcloud {
 
 class Saliency final : public Stage {
   double alpha_ = 0.2;
-  SalientSelection keep_ = SalientSelection::All;
+  saliency::SalientSelection keep_ = saliency::SalientSelection::All;
   Frame frame_ = Frame::Base;
   std::size_t last_count_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("alpha", alpha_, 0.2).range(0.0, 1.0).doc("keep markers displaced more than alpha * max displacement");
-    p.add("keep", keep_, SalientSelection::All, {{"all", SalientSelection::All}, {"deepest", SalientSelection::Deepest}})
+    p.add("keep", keep_, saliency::SalientSelection::All, {{"all", saliency::SalientSelection::All}, {"deepest", saliency::SalientSelection::Deepest}})
         .doc("all salient markers, or only the most displaced one (the single-point baseline SP)");
     p.add("frame", frame_, Frame::Base, {{"base", Frame::Base}, {"sensor", Frame::Sensor}}).doc("frame of the output cloud");
   }
@@ -31,12 +31,12 @@ class Saliency final : public Stage {
                      std::to_string(tactile->displacement_mm.size()) + " displacements");
     for (double d : tactile->displacement_mm)
       if (!std::isfinite(d)) throw RunError("the tactile cloud has a non-finite displacement");
-    const auto indices = salient_markers(tactile->displacement_mm, alpha_,
+    const auto indices = saliency::salient_markers(tactile->displacement_mm, alpha_,
                                          keep_);
     if (indices.empty()) throw RunError("no marker moved: the recorded frame shows no contact");
     last_count_ = indices.size();
     ctx.metric("salient_points", static_cast<double>(last_count_), "points");
-    io.output("cloud", CloudConstPtr(salient_cloud(*tactile, indices, frame_)));
+    io.output("cloud", CloudConstPtr(saliency::salient_cloud(*tactile, indices, frame_)));
   }
 };
 

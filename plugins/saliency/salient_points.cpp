@@ -4,7 +4,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud {
+namespace touchcloud::saliency {
 
 std::vector<std::size_t> salient_markers(const std::vector<double>& displacement_mm, double alpha,
                                          SalientSelection selection) {
@@ -34,4 +34,4 @@ CloudPtr salient_cloud(const TactileCloud& tactile, const std::vector<std::size_
   return out;
 }
 
-}  // namespace touchcloud
+}  // namespace touchcloud::saliency

@@ -6,7 +6,7 @@
 
 #include "touchcloud/types/tactile_cloud.hpp"
 
-namespace touchcloud {
+namespace touchcloud::saliency {
 
 enum class SalientSelection {
   All,      // every marker above the threshold (the paper's method)
@@ -22,4 +22,4 @@ std::vector<std::size_t> salient_markers(const std::vector<double>& displacement
 // the base frame with the cloud's pose.
 CloudPtr salient_cloud(const TactileCloud& tactile, const std::vector<std::size_t>& indices, Frame frame);
 
-}  // namespace touchcloud
+}  // namespace touchcloud::saliency

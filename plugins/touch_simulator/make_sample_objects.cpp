@@ -19,7 +19,7 @@
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
 namespace fs = std::filesystem;
-using touchcloud::sim::AnalyticSurface;
+using touchcloud::touch_simulator::AnalyticSurface;
 
 namespace {
 
@@ -175,9 +175,9 @@ int main(int argc, char** argv) {
   }
   try {
     const fs::path out = argv[1];
-    write_object(out, {touchcloud::sim::wave_surface(), 1.0, 24, 6,
+    write_object(out, {touchcloud::touch_simulator::wave_surface(), 1.0, 24, 6,
                        "The wave surface (200 x 50 mm) on the table, touched by the GelStereo Palm 2.0."});
-    write_object(out, {touchcloud::sim::fox_mask(), 2.0, 14, 14,
+    write_object(out, {touchcloud::touch_simulator::fox_mask(), 2.0, 14, 14,
                        "The fox mask (120 x 120 mm relief) on the table, touched by the GelStereo Palm 2.0."});
   } catch (const std::exception& e) {
     std::cerr << "make_sample_objects: error: " << e.what() << "\n";

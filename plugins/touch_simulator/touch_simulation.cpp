@@ -8,7 +8,7 @@
 
 #include "render/counter_random.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 namespace {
 
@@ -199,4 +199,4 @@ StereoFrame TouchSimulation::render() {
   return f;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

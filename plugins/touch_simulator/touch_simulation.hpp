@@ -26,7 +26,7 @@
 #include "touchcloud/types/marker_set.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 struct SimulatedFrame {
   long index = 0;  // camera frame number in the run, from 0
@@ -99,4 +99,4 @@ class TouchSimulation {
 // process (it is deterministic and takes a moment to build).
 std::shared_ptr<const MarkerLayout> gel_marker_layout(const Scene& scene);
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -39,10 +39,10 @@ class TouchSimulator final : public Stage {
   std::optional<double> speed_mm_s_, approach_speed_mm_s_, press_depth_mm_, safe_clearance_mm_, max_contact_depth_mm_;
   std::optional<std::array<double, 2>> target_xy_mm_;
 
-  sim::Scene scene_;  // read at check, with the robot values in force
-  std::shared_ptr<const sim::ObjectSurface> object_;  // built at check
+  touch_simulator::Scene scene_;  // read at check, with the robot values in force
+  std::shared_ptr<const touch_simulator::ObjectSurface> object_;  // built at check
 
-  std::unique_ptr<sim::TouchSimulation> sim_;
+  std::unique_ptr<touch_simulator::TouchSimulation> sim_;
   CloudConstPtr rest_cloud_;
   std::vector<int> marker_ids_;
 
@@ -78,18 +78,18 @@ class TouchSimulator final : public Stage {
   // The scene with the robot values this stage sets; an unreadable mesh is
   // bad input, found by `validate`. Kept for configure.
   void on_check(RunContext&) override {
-    scene_ = sim::load_scene(scene_file_);
-    sim::RobotSpec& r = scene_.robot;
+    scene_ = touch_simulator::load_scene(scene_file_);
+    touch_simulator::RobotSpec& r = scene_.robot;
     for (auto [value, field] : {std::pair{&speed_mm_s_, &r.speed_mm_s}, {&approach_speed_mm_s_, &r.approach_speed_mm_s},
                                 {&press_depth_mm_, &r.press_depth_mm}, {&safe_clearance_mm_, &r.safe_clearance_mm},
                                 {&max_contact_depth_mm_, &r.max_contact_depth_mm}})
       if (*value) *field = **value;
-    object_ = sim::make_object_surface(scene_.object);
+    object_ = touch_simulator::make_object_surface(scene_.object);
   }
 
   void on_configure(RunContext& ctx) override {
-    sim_ = std::make_unique<sim::TouchSimulation>(scene_, ctx.rng()(), object_);
-    const sim::RobotSpec& r = scene_.robot;
+    sim_ = std::make_unique<touch_simulator::TouchSimulation>(scene_, ctx.rng()(), object_);
+    const touch_simulator::RobotSpec& r = scene_.robot;
     ctx.used("speed_mm_s", r.speed_mm_s);
     ctx.used("approach_speed_mm_s", r.approach_speed_mm_s);
     ctx.used("press_depth_mm", r.press_depth_mm);
@@ -133,7 +133,7 @@ class TouchSimulator final : public Stage {
 
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto* contact = io.optional_input<ContactState>("contact");
-    const sim::SimulatedFrame& f = sim_->step(target(io), contact && contact->stable);
+    const touch_simulator::SimulatedFrame& f = sim_->step(target(io), contact && contact->stable);
     SensorPose pose;
     pose.base_from_sensor = f.reported_base_from_sensor;
 

@@ -57,7 +57,7 @@ TEST(SensingChain, StableContactAtTheTruthsFrameAndSalientPointsOnTheSurface) {
   // Contact markers lie on the fox mask: in the base frame each salient point
   // is within 0.1 mm of the mask's height there.
   const PointCloud salient = test::load_cloud(dir / "out/salient_rsrt.pcd");
-  const auto surface = sim::make_object_surface(sim::load_scene(kFoxScene).object);
+  const auto surface = touch_simulator::make_object_surface(touch_simulator::load_scene(kFoxScene).object);
   double worst = 0;
   for (const auto& p : salient) worst = std::max(worst, std::abs(p.z - surface->height_mm({p.x, p.y})));
   EXPECT_LT(worst, 0.1) << "farthest salient point from the surface";
@@ -153,7 +153,7 @@ TEST(SensingChain, RenderedImagesGiveTheSameContactFrameAndSalientPointsNearTheS
   EXPECT_EQ(metric(r, "contact.frames_to_stable"), metric(r, "truth_contact.frames_to_stable"));
   EXPECT_GE(metric(r, "match.matched_fewest"), 0.99 * metric(r, "sim.markers_seen_both"));
   const PointCloud salient = test::load_cloud(dir / "out/salient_rsrt.pcd");
-  const auto surface = sim::make_object_surface(sim::load_scene(kFoxScene).object);
+  const auto surface = touch_simulator::make_object_surface(touch_simulator::load_scene(kFoxScene).object);
   double sum = 0, worst = 0;
   for (const auto& p : salient) {
     const double off = std::abs(p.z - surface->height_mm({p.x, p.y}));
@@ -170,7 +170,7 @@ TEST(SensingChain, RecordedImageFilesGoThroughTheSameChain) {
   // Image files as a user records them: frame 0 without contact, then the
   // gel pressed into the fox mask; read with stereo_image_reader.
   test::TempDir dir;
-  sim::TouchSimulation sim(sim::load_scene(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml"), 3);
+  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml"), 3);
   std::vector<Eigen::Vector3d> truth_sensor;
   for (int frame = 0, file = 0; file < 3; ++frame) {
     const auto& f = sim.step({-20, 15}, false);

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace touchcloud::board_press {
+namespace touchcloud::checkerboard_press {
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
@@ -70,4 +70,4 @@ std::vector<BoardPose> random_board_poses(int count, double max_tilt_deg, const 
   return poses;
 }
 
-}  // namespace touchcloud::board_press
+}  // namespace touchcloud::checkerboard_press

@@ -13,7 +13,7 @@
 #include "touchcloud/sensor/checkerboard.hpp"
 #include "touchcloud/types/marker_set.hpp"
 
-namespace touchcloud::board_press {
+namespace touchcloud::checkerboard_press {
 
 // One press. The board plane is tilted by tilt_deg (about the sensor x axis,
 // then y) and sits depth_mm deep in the gel hemisphere: its distance from the
@@ -48,4 +48,4 @@ MarkerSetPtr image_press(const optics::StereoRig& rig, const Eigen::Isometry3d& 
 std::vector<BoardPose> random_board_poses(int count, double max_tilt_deg, const Eigen::Vector2d& depth_range_mm,
                                           std::mt19937_64& rng);
 
-}  // namespace touchcloud::board_press
+}  // namespace touchcloud::checkerboard_press

@@ -10,7 +10,7 @@
 #include <ceres/gradient_problem.h>
 #include <ceres/gradient_problem_solver.h>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 namespace {
 
@@ -219,4 +219,4 @@ BoxRun quasi_newton_in_box(const BoxObjective& f, const Eigen::VectorXd& lo, con
   return run;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

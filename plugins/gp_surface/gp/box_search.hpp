@@ -27,7 +27,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // f(x, value, gradient): value (and the gradient when not null) at x; false
 // when it cannot be evaluated there.
@@ -74,4 +74,4 @@ BoxRun quasi_newton_in_box(const BoxObjective& f, const Eigen::VectorXd& lo, con
                            const Eigen::VectorXd& start, const Eigen::MatrixXd& hessian,
                            const QuasiNewtonSettings& settings);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

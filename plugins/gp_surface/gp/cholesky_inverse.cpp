@@ -7,7 +7,7 @@
 extern "C" void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info, std::size_t uplo_len);
 #endif
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 namespace {
 // Below this size the recursion stops and Eigen does the block directly.
@@ -68,4 +68,4 @@ void cholesky_inverse_in_place(Eigen::Ref<Eigen::MatrixXd> m) {
   lower_gram_in_place(m);
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Lower triangle of L -> lower triangle of L^-1 (strict upper untouched).
 void invert_lower_triangular(Eigen::Ref<Eigen::MatrixXd> m);
@@ -16,4 +16,4 @@ void lower_gram_in_place(Eigen::Ref<Eigen::MatrixXd> m);
 // Lower triangle of L -> lower triangle of (L L^T)^-1.
 void cholesky_inverse_in_place(Eigen::Ref<Eigen::MatrixXd> m);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

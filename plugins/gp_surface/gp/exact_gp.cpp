@@ -14,7 +14,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 std::string to_string(UpdatePath path) { return path == UpdatePath::bordered ? "bordered" : "refactorised"; }
 
@@ -333,4 +333,4 @@ const Eigen::VectorXd& ExactGp::weights() const {
 
 Eigen::MatrixXd ExactGp::cholesky_factor() const { return factor().triangularView<Eigen::Lower>(); }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -28,7 +28,7 @@
 #include "gp/kernel.hpp"
 #include "gp/training_data.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 struct ExactGpOptions {
   JitterSchedule jitter;
@@ -134,4 +134,4 @@ class ExactGp {
   CholeskyReport factorisation_;
 };
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -13,7 +13,7 @@
 extern "C" void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, std::size_t uplo_len);
 #endif
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 namespace {
 
@@ -173,4 +173,4 @@ const char* factor_algebra_backend() {
 #endif
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

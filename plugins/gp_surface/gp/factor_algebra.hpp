@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Lower triangle of a (symmetric) -> lower triangle of L with L L^T = a.
 // False when a is not numerically positive definite (a is then garbage).
@@ -44,4 +44,4 @@ int factor_algebra_threads();
 // "OpenBLAS <version>" or "Eigen".
 const char* factor_algebra_backend();
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -9,7 +9,7 @@
 #include "gp/training_data.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 DataScales data_scales(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm) {
   check_training(xy_mm, z_mm, "training point");
@@ -95,4 +95,4 @@ HyperparameterBounds bounds_from_scales(const DataScales& s, const BoundsRules& 
   return b;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

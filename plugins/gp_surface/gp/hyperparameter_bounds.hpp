@@ -10,7 +10,7 @@
 
 #include "gp/hyperparameters.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 struct DataScales {
   double spacing_mm = 0.0;      // median distance to the nearest point at a different (x, y)
@@ -40,4 +40,4 @@ struct HyperparameterBounds {
 };
 HyperparameterBounds bounds_from_scales(const DataScales& scales, const BoundsRules& rules = {});
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

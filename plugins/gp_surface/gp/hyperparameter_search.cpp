@@ -12,7 +12,7 @@
 #include <ceres/version.h>
 #include "touchcloud/library_versions.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Recorded in summary.json's versions when this library is loaded.
 namespace {
@@ -360,4 +360,4 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
   return finish(run);
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

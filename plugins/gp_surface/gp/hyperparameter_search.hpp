@@ -40,7 +40,7 @@
 #include "gp/hyperparameters.hpp"
 #include "gp/jittered_cholesky.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 struct SearchOptions {
   KernelKind kernel = KernelKind::rbf;
@@ -120,4 +120,4 @@ SearchResult maximise_lml(const LmlFunction& f, const HyperparameterBounds& boun
 SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm,
                                     const SearchOptions& options = {});
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

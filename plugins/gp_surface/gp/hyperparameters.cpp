@@ -5,7 +5,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 std::string to_string(KernelKind kind) { return kind == KernelKind::rbf ? "rbf" : "matern52"; }
 
@@ -42,4 +42,4 @@ Hyperparameters from_log(const LogHyperparameters& theta) {
   return {std::exp(theta[0]), std::exp(theta[1]), std::exp(theta[2])};
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 enum class KernelKind { rbf, matern52 };
 
@@ -33,4 +33,4 @@ using LogHyperparameters = Eigen::Vector3d;
 LogHyperparameters to_log(const Hyperparameters& h);
 Hyperparameters from_log(const LogHyperparameters& theta);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -6,7 +6,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 std::vector<Eigen::Index> farthest_point_subset(const Eigen::MatrixX2d& xy_mm, Eigen::Index m, Eigen::Index first) {
   const Eigen::Index n = xy_mm.rows();
@@ -34,4 +34,4 @@ std::vector<Eigen::Index> farthest_point_subset(const Eigen::MatrixX2d& xy_mm, E
   return picked;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

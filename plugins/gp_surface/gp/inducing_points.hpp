@@ -9,11 +9,11 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Row indices into xy_mm of min(m, n) points, starting from row `first`
 // (the caller's seeded choice). All n rows, in order, when m >= n. Ties go to
 // the lower row index, so the result is deterministic.
 std::vector<Eigen::Index> farthest_point_subset(const Eigen::MatrixX2d& xy_mm, Eigen::Index m, Eigen::Index first);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

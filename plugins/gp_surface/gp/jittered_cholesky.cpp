@@ -8,7 +8,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 void JitterSchedule::validate() const {
   auto fail = [](const std::string& field, double value, const char* rule) {
@@ -65,4 +65,4 @@ CholeskyReport factor_with_jitter(Eigen::Ref<Eigen::MatrixXd> storage,
   throw RunError(msg.str());
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

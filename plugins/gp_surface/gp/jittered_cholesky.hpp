@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 struct JitterSchedule {
   double first_relative = 1e-10;  // first jitter, relative to mean(diag A)
@@ -37,4 +37,4 @@ CholeskyReport factor_with_jitter(Eigen::Ref<Eigen::MatrixXd> storage,
 // Whether every pivot of a computed factor lies above the rounding level.
 bool pivots_above_rounding(const Eigen::Ref<const Eigen::MatrixXd>& lower, double mean_diagonal, Eigen::Index n_total);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -8,7 +8,7 @@
 #include "gp/two_threads.hpp"
 #include "gp/vector_exp.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 namespace {
 constexpr double kSqrt5 = 2.23606797749978969640917366873128;
@@ -121,4 +121,4 @@ void Kernel::fill_cross(const Eigen::VectorXd& px, const Eigen::VectorXd& py, co
   }
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -8,7 +8,7 @@
 
 #include "gp/hyperparameters.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 class Kernel {
  public:
@@ -49,4 +49,4 @@ class Kernel {
   double inv_lengthscale2_;
 };
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -5,7 +5,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 std::size_t clamp_latent_variance(Eigen::Ref<Eigen::VectorXd> variance_mm2, const std::string& model,
                                   Eigen::Index training_points) {
@@ -27,4 +27,4 @@ std::size_t clamp_latent_variance(Eigen::Ref<Eigen::VectorXd> variance_mm2, cons
   return clamped;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

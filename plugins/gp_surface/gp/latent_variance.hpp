@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Clamps negative values at 0 and returns how many. RunError naming `model`,
 // the query point and its value at the first value that is not finite (NaN
@@ -17,4 +17,4 @@ namespace touchcloud::gp {
 std::size_t clamp_latent_variance(Eigen::Ref<Eigen::VectorXd> variance_mm2, const std::string& model,
                                   Eigen::Index training_points);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -12,7 +12,7 @@
 #include "gp/training_data.hpp"
 #include "gp/triangle_columns.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 namespace {
 double half_n_log_2pi(Eigen::Index n) { return 0.5 * static_cast<double>(n) * std::log(2.0 * std::numbers::pi); }
@@ -138,4 +138,4 @@ ProfiledEvaluation MarginalLikelihood::evaluate_profiled(double lengthscale_mm, 
   return out;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

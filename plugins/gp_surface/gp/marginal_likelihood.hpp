@@ -21,7 +21,7 @@
 #include "gp/hyperparameters.hpp"
 #include "gp/jittered_cholesky.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 struct LmlEvaluation {
   double lml = 0.0;
@@ -81,4 +81,4 @@ class MarginalLikelihood {
   double quad_ = 0, half_log_det_ = 0;
 };
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 std::pair<Eigen::MatrixX2d, Eigen::VectorXd> subset_of_runs(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm,
                                                             Eigen::Index size, Eigen::Index runs) {
@@ -23,4 +23,4 @@ std::pair<Eigen::MatrixX2d, Eigen::VectorXd> subset_of_runs(const Eigen::MatrixX
   return sub;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

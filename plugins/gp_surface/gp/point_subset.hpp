@@ -11,11 +11,11 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // `size` points (all when size >= n) in `runs` runs of consecutive points
 // starting at evenly spaced positions, in data order.
 std::pair<Eigen::MatrixX2d, Eigen::VectorXd> subset_of_runs(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm,
                                                             Eigen::Index size, Eigen::Index runs);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

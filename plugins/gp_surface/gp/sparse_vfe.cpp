@@ -9,7 +9,7 @@
 #include "gp/latent_variance.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 SparseVfeGp::SparseVfeGp(KernelKind kind, const Hyperparameters& h, JitterSchedule jitter)
     : kernel_(kind, h), jitter_(jitter) {
@@ -92,4 +92,4 @@ Eigen::VectorXd SparseVfeGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t
   return out;
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

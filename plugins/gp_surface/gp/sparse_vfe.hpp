@@ -18,7 +18,7 @@
 #include "gp/kernel.hpp"
 #include "gp/training_data.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 class SparseVfeGp {
  public:
@@ -52,4 +52,4 @@ class SparseVfeGp {
   double bound_ = 0.0;
 };
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

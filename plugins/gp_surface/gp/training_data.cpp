@@ -5,7 +5,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 Centring centring_of(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm) {
   Centring c;
@@ -49,4 +49,4 @@ CentredXy centre(const Eigen::MatrixX2d& xy_mm, const Centring& c) {
   return {xy_mm.col(0).array() - c.x_mm, xy_mm.col(1).array() - c.y_mm};
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Offsets subtracted from x, y (middle of the bounding box) and z (mean).
 struct Centring {
@@ -27,4 +27,4 @@ struct CentredXy {
 };
 CentredXy centre(const Eigen::MatrixX2d& xy_mm, const Centring& c);
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

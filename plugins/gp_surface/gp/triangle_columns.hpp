@@ -10,7 +10,7 @@
 
 #include "gp/two_threads.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Calls body(first, last) on column ranges covering [0, n): [0, split) on a
 // second thread and [split, n) on this one, or [0, n) here for small n
@@ -21,4 +21,4 @@ void for_triangle_columns(Eigen::Index n, Body body) {
   on_two_threads(n, static_cast<Eigen::Index>(static_cast<double>(n) * (1.0 - std::sqrt(0.5))), n * (n + 1) / 2, body);
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 // Below this much work (kernel values, triangle entries) a second thread
 // costs more than it saves.
@@ -26,4 +26,4 @@ void on_two_threads(Eigen::Index n, Eigen::Index split, Eigen::Index work, Body 
   first.get();
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

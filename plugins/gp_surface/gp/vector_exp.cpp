@@ -13,7 +13,7 @@
 extern "C" __m256d Sleef_expd4_u10avx2(__m256d);
 #endif
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 namespace {
 
@@ -51,4 +51,4 @@ const char* vector_exp_path() {
   return "sse2 (Eigen)";
 }
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

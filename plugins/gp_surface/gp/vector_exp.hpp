@@ -9,11 +9,11 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 
 void exp_in_place(Eigen::Ref<Eigen::ArrayXd> v);
 
 // "avx2+fma" or "sse2 (Eigen)": the path exp_in_place takes on this CPU.
 const char* vector_exp_path();
 
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -8,7 +8,7 @@
 #include <emmintrin.h>
 #endif
 
-namespace touchcloud::detail {
+namespace touchcloud::marker_detection {
 
 DotBackground::DotBackground(bool dark_dots, int window_px)
     : dark_(dark_dots), scale_(window_px >= 12 ? 4 : window_px >= 6 ? 2 : 1) {
@@ -61,4 +61,4 @@ void DotBackground::mask_row(const cv::Mat& grey, int y, int threshold_grey, Mas
     if (dark_ ? g[x] < limit[x] : g[x] > limit[x]) bits[x / 64] |= std::uint64_t{1} << (x % 64);
 }
 
-}  // namespace touchcloud::detail
+}  // namespace touchcloud::marker_detection

@@ -17,7 +17,7 @@
 
 #include "detector/mask_blobs.hpp"
 
-namespace touchcloud::detail {
+namespace touchcloud::marker_detection {
 
 class DotBackground {
  public:
@@ -42,4 +42,4 @@ class DotBackground {
   int limit_threshold_ = -1;
 };
 
-}  // namespace touchcloud::detail
+}  // namespace touchcloud::marker_detection

@@ -6,7 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
-namespace touchcloud::detail {
+namespace touchcloud::marker_detection {
 
 namespace {
 
@@ -204,4 +204,4 @@ std::vector<DotMoments> split_clump(const cv::Mat& grey, bool dark, const DotWin
   return out;
 }
 
-}  // namespace touchcloud::detail
+}  // namespace touchcloud::marker_detection

@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-namespace touchcloud::detail {
+namespace touchcloud::marker_detection {
 
 struct DotMoments {
   double ink = 0;        // weight: contrast above the floor, summed (grey levels x px)
@@ -61,4 +61,4 @@ std::vector<DotMoments> split_clump(const cv::Mat& grey, bool dark, const DotWin
                                     const cv::Rect& blob_box, const ContrastLevels& levels, const DotMoments& whole,
                                     int dots);
 
-}  // namespace touchcloud::detail
+}  // namespace touchcloud::marker_detection

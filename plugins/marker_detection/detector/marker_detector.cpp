@@ -13,8 +13,8 @@ namespace touchcloud {
 
 namespace {
 
-using detail::DotMoments;
-using detail::DotWindow;
+using marker_detection::DotMoments;
+using marker_detection::DotWindow;
 
 constexpr double kDiscFill = M_PI / 4;  // a disc's share of its bounding box
 // Blur and anti-aliasing widen a thresholded dot by about a pixel each side,
@@ -93,7 +93,7 @@ std::vector<Marker> MarkerDetector::detect(const cv::Mat& image, const std::stri
 
   background_.estimate(*grey);
   const int threshold = static_cast<int>(std::floor(options_.contrast_grey));
-  blobs_.find(grey->rows, grey->cols, [&](int y, detail::MaskBlobs::RowBits& bits) {
+  blobs_.find(grey->rows, grey->cols, [&](int y, marker_detection::MaskBlobs::RowBits& bits) {
     background_.mask_row(*grey, y, threshold, bits);
   });
   return measure_blobs(*grey);
@@ -106,17 +106,17 @@ std::vector<Marker> MarkerDetector::measure_blobs(const cv::Mat& grey) const {
   const double max_area = kDiscFill * max_extent * max_extent;
   const cv::Size size = grey.size();
   const bool dark = options_.polarity == MarkerPolarity::Dark;
-  const detail::ContrastLevels levels{static_cast<int>(std::floor(options_.contrast_grey)),
+  const marker_detection::ContrastLevels levels{static_cast<int>(std::floor(options_.contrast_grey)),
                                       kWeightFloorOfThreshold * options_.contrast_grey};
   std::vector<Blob> candidates;
   candidates.reserve(blobs_.blobs().size());
   std::vector<double> single_ink;
-  for (const detail::MaskBlob& mb : blobs_.blobs()) {
+  for (const marker_detection::MaskBlob& mb : blobs_.blobs()) {
     Blob b{mb.box, mb.area, {}, {}};
     if (b.extent() < min_extent || b.extent() > 3 * max_extent || b.area > kMaxDotsInClump * max_area) continue;
     constexpr int m = kWindowMarginPx;
-    b.window = detail::fit_window(cv::Rect(b.box.x - m, b.box.y - m, b.box.width + 2 * m, b.box.height + 2 * m), size);
-    b.moments = detail::measure_dot(grey, dark, b.window, b.box, levels);
+    b.window = marker_detection::fit_window(cv::Rect(b.box.x - m, b.box.y - m, b.box.width + 2 * m, b.box.height + 2 * m), size);
+    b.moments = marker_detection::measure_dot(grey, dark, b.window, b.box, levels);
     if (!(b.moments.ink > 0)) continue;
     if (b.extent() <= max_extent && b.moments.elongation() <= kRoundElongation && !b.moments.clipped)
       single_ink.push_back(b.moments.dots_by_ink());
@@ -145,7 +145,7 @@ std::vector<Marker> MarkerDetector::measure_blobs(const cv::Mat& grey) const {
       markers.push_back({m.centre_px, -1, quality(m, b.fill() / kDiscFill)});
     } else if (dots <= kMaxDotsInClump) {
       const int n = static_cast<int>(dots);
-      for (const DotMoments& m : detail::split_clump(grey, dark, b.window, b.box, levels, b.moments, n)) {
+      for (const DotMoments& m : marker_detection::split_clump(grey, dark, b.window, b.box, levels, b.moments, n)) {
         if (!(m.ink > 0) || m.elongation() > options_.max_elongation || !inside_box(m.centre_px, b.box)) continue;
         markers.push_back({m.centre_px, -1, 0.5 * quality(m, 1.0)});  // a share of a clump: less sure
       }

@@ -58,8 +58,8 @@ class MarkerDetector {
   std::vector<Marker> measure_blobs(const cv::Mat& grey) const;  // of the blobs found
 
   MarkerDetectorOptions options_;
-  detail::DotBackground background_;
-  detail::MaskBlobs blobs_;
+  marker_detection::DotBackground background_;
+  marker_detection::MaskBlobs blobs_;
   cv::Mat grey_;  // a BGR image converted, kept between calls
 };
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
-namespace touchcloud::detail {
+namespace touchcloud::marker_detection {
 
 int MaskBlobs::root(int run) {
   while (parent_[run] != run) {
@@ -74,4 +74,4 @@ void MaskBlobs::find(int rows, int cols, const std::function<void(int, RowBits&)
   }
 }
 
-}  // namespace touchcloud::detail
+}  // namespace touchcloud::marker_detection

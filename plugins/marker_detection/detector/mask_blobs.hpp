@@ -11,7 +11,7 @@
 
 #include <opencv2/core/types.hpp>
 
-namespace touchcloud::detail {
+namespace touchcloud::marker_detection {
 
 struct MaskBlob {
   cv::Rect box;  // bounding box
@@ -40,4 +40,4 @@ class MaskBlobs {
   std::vector<MaskBlob> blobs_;
 };
 
-}  // namespace touchcloud::detail
+}  // namespace touchcloud::marker_detection

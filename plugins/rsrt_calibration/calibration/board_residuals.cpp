@@ -7,7 +7,7 @@
 #include "touchcloud/error.hpp"
 #include "touchcloud/optics/ray_triangulation.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 using optics::StereoSide;
 
@@ -136,4 +136,4 @@ double board_tilt_deg(const std::vector<Eigen::Vector3d>& points_mm, const Eigen
   return std::acos(c) * 180.0 / M_PI;
 }
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -23,7 +23,7 @@
 #include "calibration/checkerboard.hpp"
 #include "touchcloud/optics/stereo_rig.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 // What of a press does not depend on the plate: each corner's air ray
 // direction from both camera centres (left camera frame), and which corners
@@ -75,4 +75,4 @@ void board_residuals(const BoardRays& rays, const std::vector<Eigen::Vector3d>& 
 // The angle (deg) between the board's best-fit plane and the plate.
 double board_tilt_deg(const std::vector<Eigen::Vector3d>& points_mm, const Eigen::Vector3d& plate_normal);
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -4,7 +4,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 PressCorners press_corners_from(const MarkerSet& markers, const Checkerboard& board, const std::string& what) {
   PressCorners press;
@@ -37,4 +37,4 @@ PressCorners press_corners_from(const MarkerSet& markers, const Checkerboard& bo
   return press;
 }
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

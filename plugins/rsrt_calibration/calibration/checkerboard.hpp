@@ -9,7 +9,7 @@
 #include "touchcloud/sensor/checkerboard.hpp"
 #include "touchcloud/types/marker_set.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 using sensor::Checkerboard;
 
@@ -29,4 +29,4 @@ struct PressCorners {
 // or left and right ids that disagree.
 PressCorners press_corners_from(const MarkerSet& markers, const Checkerboard& board, const std::string& what);
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -6,7 +6,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 NormalChart::NormalChart(const Eigen::Vector3d& reference_normal) {
   if (!reference_normal.allFinite() || reference_normal.norm() < 1e-12)
@@ -34,4 +34,4 @@ Eigen::Vector2d NormalChart::coordinates(const Eigen::Vector3d& normal) const {
   return std::atan2(s, n.dot(n0_)) / s * tangent;
 }
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

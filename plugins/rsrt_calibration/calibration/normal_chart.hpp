@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 class NormalChart {
  public:
@@ -20,4 +20,4 @@ class NormalChart {
   Eigen::Vector3d n0_, e1_, e2_;
 };
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -7,7 +7,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 ParameterSpread parameter_spread(const Eigen::MatrixXd& j, const Eigen::VectorXd& residuals,
                                  const std::vector<int>& cluster_rows) {
@@ -40,4 +40,4 @@ ParameterSpread parameter_spread(const Eigen::MatrixXd& j, const Eigen::VectorXd
   return spread;
 }
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 struct ParameterSpread {
   double condition_number = 0;  // infinite when a column is zero or the columns are dependent
@@ -24,4 +24,4 @@ struct ParameterSpread {
 ParameterSpread parameter_spread(const Eigen::MatrixXd& j, const Eigen::VectorXd& residuals,
                                  const std::vector<int>& cluster_rows);
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -12,7 +12,7 @@
 #include <ceres/version.h>
 #include "touchcloud/library_versions.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 // Recorded in summary.json's versions when this library is loaded.
 namespace {
@@ -284,4 +284,4 @@ double mean_corner_error_mm(const optics::StereoRig& rig, const Checkerboard& bo
   return shape.mean_error_mm();
 }
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -18,7 +18,7 @@
 #include "calibration/checkerboard.hpp"
 #include "touchcloud/optics/stereo_rig.hpp"
 
-namespace touchcloud::calibration {
+namespace touchcloud::rsrt_calibration {
 
 struct PlateCalibrationOptions {
   BoardSpans spans = BoardSpans::AllPairs;  // which corner distances to fit (board_residuals.hpp)
@@ -79,4 +79,4 @@ PlateCalibrationResult calibrate_plate(const optics::StereoRig& initial, const C
 double mean_corner_error_mm(const optics::StereoRig& rig, const Checkerboard& board,
                             const std::vector<PressCorners>& presses);
 
-}  // namespace touchcloud::calibration
+}  // namespace touchcloud::rsrt_calibration

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 void press_gel(const std::vector<Eigen::Vector3d>& rest_sensor_mm, const Eigen::Isometry3d& base_from_sensor,
                const ObjectSurface& object, const GelContactOptions& options, GelState& state) {
@@ -51,4 +51,4 @@ void press_gel(const std::vector<Eigen::Vector3d>& rest_sensor_mm, const Eigen::
   }
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -17,7 +17,7 @@
 
 #include "objects/object_surface.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 struct GelContactOptions {
   bool contact = false;
@@ -37,4 +37,4 @@ struct GelState {
 void press_gel(const std::vector<Eigen::Vector3d>& rest_sensor_mm, const Eigen::Isometry3d& base_from_sensor,
                const ObjectSurface& object, const GelContactOptions& options, GelState& state);
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -12,7 +12,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 namespace {
 
@@ -219,4 +219,4 @@ MarkerLayout make_marker_layout(double radius_mm, double min_spacing_mm, double 
   return layout;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

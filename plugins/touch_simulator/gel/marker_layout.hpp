@@ -10,7 +10,7 @@
 
 #include <Eigen/Geometry>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 struct MarkerLayout {
   std::vector<Eigen::Vector3d> rest_mm;  // marker id = index
@@ -38,4 +38,4 @@ std::size_t bisect_count(std::size_t lo, std::size_t hi, double target,
 // Mean and minimum nearest-neighbour distance of `points` (at least two).
 void nearest_neighbour_spacing(const std::vector<Eigen::Vector3d>& points, double& mean_mm, double& min_mm);
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

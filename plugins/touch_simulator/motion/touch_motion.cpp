@@ -4,7 +4,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 Eigen::Isometry3d downward_sensor_pose(const Eigen::Vector2d& xy_mm, double height_mm) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -61,4 +61,4 @@ void TouchMotion::observe_overlap(bool overlapping) {
   }
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

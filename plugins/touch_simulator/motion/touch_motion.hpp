@@ -13,7 +13,7 @@
 
 #include "scene/scene.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 struct TouchStep {
   int touch = 0;                 // touch number in the run, from 0
@@ -58,4 +58,4 @@ class TouchMotion {
   std::optional<double> first_contact_;  // sensor height when the gel first met the object
 };
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 namespace {
 
@@ -93,4 +93,4 @@ const AnalyticSurface& fox_mask() {
   return s;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

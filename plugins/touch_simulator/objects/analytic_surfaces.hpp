@@ -12,7 +12,7 @@
 
 #include <Eigen/Geometry>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 struct AnalyticSurface {
   const char* name;
@@ -23,4 +23,4 @@ struct AnalyticSurface {
 const AnalyticSurface& wave_surface();
 const AnalyticSurface& fox_mask();
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -5,7 +5,7 @@
 
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 namespace {
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -125,4 +125,4 @@ double MeshSurface::max_height_mm(const Eigen::Vector2d& centre, double radius) 
   return top;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -9,7 +9,7 @@
 #include "objects/object_surface.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 class MeshSurface final : public ObjectSurface {
  public:
@@ -44,4 +44,4 @@ class MeshSurface final : public ObjectSurface {
   std::vector<double> cell_max_z_;                          // highest vertex over each cell
 };
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

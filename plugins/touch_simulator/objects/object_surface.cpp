@@ -7,7 +7,7 @@
 #include "objects/mesh_surface.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 namespace {
 
@@ -88,4 +88,4 @@ std::unique_ptr<ObjectSurface> make_object_surface(const ObjectSpec& object) {
   throw InputError("scene object: unknown kind");
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

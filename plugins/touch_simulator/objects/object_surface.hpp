@@ -8,7 +8,7 @@
 
 #include "scene/scene.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 class ObjectSurface {
  public:
@@ -31,4 +31,4 @@ class ObjectSurface {
 // or has no upward-facing area throws InputError naming `object.mesh`.
 std::unique_ptr<ObjectSurface> make_object_surface(const ObjectSpec& object);
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

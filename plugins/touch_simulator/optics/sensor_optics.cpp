@@ -5,7 +5,7 @@
 
 #include "touchcloud/optics/refractive_projection.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 SensorOptics::SensorOptics(const Scene& scene, bool refraction, bool lens_distortion)
     : rig_(sensor::make_stereo_rig(scene.sensor, refraction, lens_distortion)),
@@ -71,4 +71,4 @@ ViewPixels SensorOptics::view(StereoSide side, const std::vector<Eigen::Vector3d
   return out;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

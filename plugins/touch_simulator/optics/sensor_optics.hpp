@@ -12,7 +12,7 @@
 #include "scene/scene.hpp"
 #include "touchcloud/optics/stereo_rig.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 using optics::StereoSide;
 
@@ -54,4 +54,4 @@ class SensorOptics {
   bool refraction_;
 };
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 // splitmix64's finaliser: stepping a counter by kGoldenGamma and mixing it is splitmix64.
 inline constexpr std::uint64_t kGoldenGamma = 0x9E3779B97F4A7C15ull;
@@ -37,4 +37,4 @@ inline Eigen::Vector2d normal_pair_from(std::uint64_t key) {
   return {r * std::cos(angle), r * std::sin(angle)};
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -6,7 +6,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 ImageNoise::ImageNoise(double sigma_grey) : sigma_(sigma_grey), offsets_(65536) {
   for (std::size_t i = 0; i < offsets_.size(); ++i) {
@@ -37,4 +37,4 @@ void ImageNoise::apply(cv::Mat& image, std::uint64_t seed) const {
 
 void blur_image(cv::Mat& image, double sigma_px) { cv::GaussianBlur(image, image, cv::Size(0, 0), sigma_px); }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -16,7 +16,7 @@
 
 #include "render/counter_random.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 class ImageNoise {
  public:
@@ -34,4 +34,4 @@ class ImageNoise {
 // Gaussian blur of a grey image (OpenCV), sigma in pixels.
 void blur_image(cv::Mat& image, double sigma_px);
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

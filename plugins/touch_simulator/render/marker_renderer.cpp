@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 namespace {
 
@@ -75,4 +75,4 @@ cv::Mat MarkerRenderer::render(const std::vector<MarkerDot>& dots) const {
   return image;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

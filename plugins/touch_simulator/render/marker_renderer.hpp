@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 struct MarkerDot {
   Eigen::Vector2d centre_px;  // x right, y down; pixel (0, 0) is the top-left pixel's centre
@@ -40,4 +40,4 @@ class MarkerRenderer {
   double marker_grey_;
 };
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -1,6 +1,6 @@
 #include "scene/effects.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 const std::array<Effect, kEffectCount>& all_effects() {
   static const std::array<Effect, kEffectCount> effects{
@@ -43,4 +43,4 @@ std::string EffectSet::str() const {
   return out.empty() ? "none" : out;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

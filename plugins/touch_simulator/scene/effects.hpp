@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 enum class Effect {
   Contact,         // the gel conforms to the object where they overlap
@@ -61,4 +61,4 @@ struct EffectParameters {
   double marker_grey = 40.0;       // a marker dot's centre
 };
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -8,7 +8,7 @@
 
 namespace fs = std::filesystem;
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 using config::ConfigFields;
 using config::ConfigProblems;
@@ -157,4 +157,4 @@ Scene load_scene(const fs::path& file) {
   return scene;
 }
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

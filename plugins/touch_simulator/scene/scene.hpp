@@ -13,7 +13,7 @@
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 #include "touchcloud/types/workspace.hpp"
 
-namespace touchcloud::sim {
+namespace touchcloud::touch_simulator {
 
 enum class ObjectKind { Mesh, FoxMask, WaveSurface, Plane };
 const char* to_string(ObjectKind kind);
@@ -59,4 +59,4 @@ struct Scene {
 // each naming the field ("sensor.plate.thickness_mm") and its place in the file.
 Scene load_scene(const std::filesystem::path& file);
 
-}  // namespace touchcloud::sim
+}  // namespace touchcloud::touch_simulator

@@ -3,7 +3,9 @@
 
 #include "convergence.hpp"
 
-using touchcloud::convergence_touches;
+using namespace touchcloud::chamfer;
+
+using touchcloud::chamfer::convergence_touches;
 
 TEST(Convergence, CountsTouchesUntilTheScoreStaysWithinFivePercent) {
   // Final 1.0: 1.04 and 0.96 are within 5 %, 1.2 is not; the last score

@@ -22,12 +22,12 @@ sensor::GelStereoSensor true_sensor() {
 
 TEST(BoardPress, CornersFormTheBoardAtThePressDepth) {
   const sensor::Checkerboard board{5, 4, 3.0};
-  board_press::BoardPose pose;
+  checkerboard_press::BoardPose pose;
   pose.tilt_deg = {20, -10};
   pose.depth_mm = 7;
   pose.spin_deg = 30;
   pose.shift_mm = {1, -1};
-  const auto c = board_press::board_corners_sensor(board, pose, 32.5);
+  const auto c = checkerboard_press::board_corners_sensor(board, pose, 32.5);
   ASSERT_EQ(c.size(), 20u);
   EXPECT_NEAR((c[1] - c[0]).norm(), 3.0, 1e-12);          // along a row
   EXPECT_NEAR((c[5] - c[0]).norm(), 3.0, 1e-12);          // along a column
@@ -43,12 +43,12 @@ TEST(BoardPress, NoiseFreePixelsTriangulateBackOntoTheCorners) {
   const auto rig = sensor::make_stereo_rig(truth, true, true);
   const Eigen::Isometry3d left_from_sensor = truth.sensor_from_left_camera().inverse();
   const sensor::Checkerboard board{10, 10, 4.0};  // larger than the pressed disc: some corners drop
-  board_press::BoardPose pose;
+  checkerboard_press::BoardPose pose;
   pose.tilt_deg = {15, 5};
   pose.depth_mm = 5;
-  const auto corners = board_press::board_corners_sensor(board, pose, 32.5);
+  const auto corners = checkerboard_press::board_corners_sensor(board, pose, 32.5);
   std::mt19937_64 rng(1);
-  const auto set = board_press::image_press(rig, left_from_sensor, corners, 32.5, {0.0, 0.5}, rng);
+  const auto set = checkerboard_press::image_press(rig, left_from_sensor, corners, 32.5, {0.0, 0.5}, rng);
   int inside = 0;
   for (const auto& p : corners) inside += p.norm() <= 32.5 && p.z() >= 0.5;
   EXPECT_GT(inside, 10);
@@ -69,13 +69,13 @@ TEST(BoardPress, PixelNoiseHasTheAskedSigma) {
   const auto truth = true_sensor();
   const auto rig = sensor::make_stereo_rig(truth, true, true);
   const Eigen::Isometry3d left_from_sensor = truth.sensor_from_left_camera().inverse();
-  const auto corners = board_press::board_corners_sensor({8, 6, 4.0}, {}, 32.5);
+  const auto corners = checkerboard_press::board_corners_sensor({8, 6, 4.0}, {}, 32.5);
   std::mt19937_64 rng(5);
   double sum = 0, sum2 = 0;
   int n = 0;
   for (int rep = 0; rep < 50; ++rep) {
-    const auto exact = board_press::image_press(rig, left_from_sensor, corners, 32.5, {0.0, 0.5}, rng);
-    const auto noisy = board_press::image_press(rig, left_from_sensor, corners, 32.5, {0.3, 0.5}, rng);
+    const auto exact = checkerboard_press::image_press(rig, left_from_sensor, corners, 32.5, {0.0, 0.5}, rng);
+    const auto noisy = checkerboard_press::image_press(rig, left_from_sensor, corners, 32.5, {0.3, 0.5}, rng);
     ASSERT_EQ(exact->left.size(), noisy->left.size());
     for (std::size_t i = 0; i < exact->left.size(); ++i)
       for (int k = 0; k < 2; ++k) {

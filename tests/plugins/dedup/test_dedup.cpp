@@ -4,6 +4,7 @@
 #include "overlap_filter.hpp"
 
 using namespace touchcloud;
+using namespace touchcloud::dedup;
 
 namespace {
 // n x n points, `spacing` apart, starting at (x0, 0, 0).

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-namespace touchcloud::gp::test {
+namespace touchcloud::gp_surface::test {
 
 inline double dyadic(double v) { return std::ldexp(std::round(std::ldexp(v, 10)), -10); }
 
@@ -57,4 +57,4 @@ inline double max_relative_difference(const Eigen::VectorXd& a, const Eigen::Vec
   return (a - b).cwiseAbs().maxCoeff() / std::max(1e-300, b.cwiseAbs().maxCoeff());
 }
 
-}  // namespace touchcloud::gp::test
+}  // namespace touchcloud::gp_surface::test

@@ -13,7 +13,7 @@
 #include "gp/marginal_likelihood.hpp"
 #include "gp_fixtures.hpp"
 
-using namespace touchcloud::gp;
+using namespace touchcloud::gp_surface;
 // Wall time and process CPU time: on a busy shared machine the CPU time of
 // this single-threaded program is the better measure of its own cost.
 struct Stopwatch {

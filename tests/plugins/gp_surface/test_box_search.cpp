@@ -9,7 +9,7 @@
 
 #include "gp/box_search.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 // A concave, far-from-quadratic function of two variables with its maximum
@@ -98,4 +98,4 @@ TEST(GpBoxSearch, LbfgsFindsTheMaximumInsideTheBox) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

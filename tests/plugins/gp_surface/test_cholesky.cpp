@@ -12,7 +12,7 @@
 #include "gp_fixtures.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 Eigen::MatrixXd random_spd(Eigen::Index n, unsigned seed) {
@@ -137,4 +137,4 @@ TEST(GpJitteredCholesky, ScheduleIsValidated) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -12,7 +12,7 @@
 #include "gp_fixtures.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 using test::grid_xy;
@@ -397,4 +397,4 @@ TEST(GpExact, CachedLikelihoodMatchesTheEvaluator) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

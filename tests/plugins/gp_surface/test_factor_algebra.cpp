@@ -9,7 +9,7 @@
 
 #include "gp/factor_algebra.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 // Restores the count the test found, whatever the test does.
@@ -54,4 +54,4 @@ TEST(GpFactorAlgebra, RowSolveAgreesOnOneThreadAndOnMany) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -13,7 +13,7 @@
 #include "gp_fixtures.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 using test::grid_xy;
@@ -394,4 +394,4 @@ TEST(GpHyperparameterSearch, BadDataIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -9,7 +9,7 @@
 #include "gp_fixtures.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 using test::grid_xy;
@@ -160,9 +160,9 @@ TEST(GpIncrementalUpdate, BadInputChangesNothing) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 // Snapshots share one append-only factor: a copy that is updated must leave
@@ -231,4 +231,4 @@ TEST(GpSnapshots, CachedCandidateVarianceEqualsAFreshSolve) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -7,7 +7,7 @@
 #include "gp/kernel.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 const double kSqrt5 = std::sqrt(5.0);
@@ -144,4 +144,4 @@ TEST(GpKernel, NamedHyperparametersCarryUnits) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

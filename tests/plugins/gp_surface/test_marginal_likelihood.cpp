@@ -11,7 +11,7 @@
 #include "gp_fixtures.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 using test::heights;
@@ -173,4 +173,4 @@ TEST(GpMarginalLikelihood, BadInputIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

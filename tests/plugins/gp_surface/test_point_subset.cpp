@@ -5,7 +5,7 @@
 
 #include "gp/point_subset.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 // Points numbered by their row: x = row, so a subset shows which rows it took.
@@ -46,4 +46,4 @@ TEST(GpPointSubset, RunsAreConsecutiveDisjointAndSpread) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

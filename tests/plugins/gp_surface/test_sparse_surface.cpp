@@ -12,7 +12,9 @@
 #include "sparse_surface_model.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+using namespace touchcloud::gp_surface;
+
+namespace touchcloud::gp_surface {
 namespace {
 
 using test::grid_xy;
@@ -98,4 +100,4 @@ TEST(GpSparseSurface, ApproachesTheExactModelAsInducingPointsGrow) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

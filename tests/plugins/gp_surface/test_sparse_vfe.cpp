@@ -11,7 +11,7 @@
 #include "gp_fixtures.hpp"
 #include "touchcloud/error.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 using test::grid_xy;
@@ -85,4 +85,4 @@ TEST(GpSparseVfe, NeedsNoiseAndInducingPoints) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -8,7 +8,7 @@
 
 #include "gp/triangle_columns.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 TEST(TriangleColumns, EachColumnOnceWithHalfTheEntriesEachSide) {
@@ -36,4 +36,4 @@ TEST(TriangleColumns, EachColumnOnceWithHalfTheEntriesEachSide) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -8,7 +8,7 @@
 
 #include "gp/vector_exp.hpp"
 
-namespace touchcloud::gp {
+namespace touchcloud::gp_surface {
 namespace {
 
 double ulps_apart(double a, double b) {
@@ -48,4 +48,4 @@ TEST(GpVectorExp, LimitsAsStdExp) {
 }
 
 }  // namespace
-}  // namespace touchcloud::gp
+}  // namespace touchcloud::gp_surface

@@ -13,11 +13,11 @@ using namespace touchcloud;
 
 namespace {
 
-cv::Mat dots_image(const std::vector<sim::MarkerDot>& dots, int width = 80, int height = 60) {
-  sim::RenderStyle flat;
+cv::Mat dots_image(const std::vector<touch_simulator::MarkerDot>& dots, int width = 80, int height = 60) {
+  touch_simulator::RenderStyle flat;
   flat.vignetting = 0;
   flat.gradient = 0;
-  return sim::MarkerRenderer(width, height, flat).render(dots);
+  return touch_simulator::MarkerRenderer(width, height, flat).render(dots);
 }
 
 std::string parameter_of(const MarkerDetectorOptions& o) {
@@ -113,8 +113,8 @@ TEST(MaskBlobs, DiagonalNeighboursJoinAndGapsSeparate) {
       "..#.#",  // (2, 1) and (4, 0) are two columns apart: two blobs
       ".....",
       "#..##"};
-  detail::MaskBlobs blobs;
-  blobs.find(4, 5, [&](int y, detail::MaskBlobs::RowBits& bits) {
+  marker_detection::MaskBlobs blobs;
+  blobs.find(4, 5, [&](int y, marker_detection::MaskBlobs::RowBits& bits) {
     for (int x = 0; x < 5; ++x)
       if (rows[y][x] == '#') bits[0] |= std::uint64_t{1} << x;
   });

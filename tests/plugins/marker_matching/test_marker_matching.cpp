@@ -51,14 +51,14 @@ Anonymised anonymise(MarkerSet set, std::mt19937_64& rng) {
 TEST(RestingGelMatcher, PairsTheReferenceFramesMarkersCorrectly) {
   TempDir dir;
   const auto scene_file = write_scene(dir, kNoisyEffects);
-  sim::TouchSimulation sim(sim::load_scene(scene_file), 5);
+  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(scene_file), 5);
   sim.step({0, 0}, false);  // at the safe height: no contact
   const MarkerSet truth = sim.marker_set();
   std::mt19937_64 rng(1);
   const Anonymised a = anonymise(truth, rng);
 
   const auto sensor = sensor::load_gelstereo_sensor(scene_file);
-  const matching::RestingGelMatcher matcher(sensor::make_stereo_rig(sensor, true, false),
+  const marker_matching::RestingGelMatcher matcher(sensor::make_stereo_rig(sensor, true, false),
                                             sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm());
   const auto matches = matcher.match(a.markers->left, a.markers->right, 4.0);
   std::size_t wrong = 0;
@@ -74,7 +74,7 @@ TEST(RestingGelMatcher, PairsTheReferenceFramesMarkersCorrectly) {
 TEST(MarkerMatchingStage, IdsFollowTheirMarkersThroughAPressAndOneViewMarkersStayUnpaired) {
   TempDir dir;
   const auto scene_file = write_scene(dir, kNoisyEffects);
-  sim::TouchSimulation sim(sim::load_scene(scene_file), 7);
+  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(scene_file), 7);
   test::StageHarness stage("marker_matching", {{"sensor", scene_file.string()}}, "match");
   stage.configure();
   std::mt19937_64 rng(2);
@@ -127,7 +127,7 @@ TEST(MarkerMatchingStage, ASensorFileThatDoesNotFitTheImagesIsNamed) {
   // 40 mm, so no prediction lands near a right marker.
   TempDir dir;
   const auto scene_file = write_scene(dir, "[contact, refraction]");
-  sim::TouchSimulation sim(sim::load_scene(scene_file), 1);
+  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(scene_file), 1);
   sim.step({0, 0}, false);
   const auto wrong_file = dir / "wrong_sensor.yaml";
   test::write_file(wrong_file, "sensor: {cameras: {baseline_mm: 40}}\n");

@@ -6,6 +6,7 @@
 #include "touch_choice.hpp"
 
 using namespace touchcloud;
+using namespace touchcloud::next_touch;
 
 namespace {
 // Variance = a field given per candidate by a function.

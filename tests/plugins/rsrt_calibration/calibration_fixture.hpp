@@ -25,26 +25,26 @@ inline sensor::GelStereoSensor true_sensor() {
   return s;
 }
 
-inline const calibration::Checkerboard kBoard{8, 6, 4.0};
+inline const rsrt_calibration::Checkerboard kBoard{8, 6, 4.0};
 
 // Presses of kBoard into `truth`'s gel, imaged with `noise_px`.
-inline std::vector<calibration::PressCorners> simulate_presses(const sensor::GelStereoSensor& truth,
-                                                               const std::vector<board_press::BoardPose>& poses,
+inline std::vector<rsrt_calibration::PressCorners> simulate_presses(const sensor::GelStereoSensor& truth,
+                                                               const std::vector<checkerboard_press::BoardPose>& poses,
                                                                double noise_px, std::mt19937_64& rng) {
   const auto rig = sensor::make_stereo_rig(truth, true, true);
   const Eigen::Isometry3d left_from_sensor = truth.sensor_from_left_camera().inverse();
-  std::vector<calibration::PressCorners> presses;
+  std::vector<rsrt_calibration::PressCorners> presses;
   for (const auto& pose : poses) {
-    const auto corners = board_press::board_corners_sensor(kBoard, pose, truth.gel.radius_mm());
-    const auto set = board_press::image_press(rig, left_from_sensor, corners, truth.gel.radius_mm(),
+    const auto corners = checkerboard_press::board_corners_sensor(kBoard, pose, truth.gel.radius_mm());
+    const auto set = checkerboard_press::image_press(rig, left_from_sensor, corners, truth.gel.radius_mm(),
                                               {noise_px, 0.5}, rng);
-    presses.push_back(calibration::press_corners_from(*set, kBoard, "test press"));
+    presses.push_back(rsrt_calibration::press_corners_from(*set, kBoard, "test press"));
   }
   return presses;
 }
 
-inline std::vector<board_press::BoardPose> flat_poses(int count) {
-  std::vector<board_press::BoardPose> poses(static_cast<std::size_t>(count));
+inline std::vector<checkerboard_press::BoardPose> flat_poses(int count) {
+  std::vector<checkerboard_press::BoardPose> poses(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     poses[static_cast<std::size_t>(i)].depth_mm = 4.0 + i;
     poses[static_cast<std::size_t>(i)].spin_deg = 10.0 * i;

@@ -9,7 +9,7 @@
 #include "calibration/normal_chart.hpp"
 #include "touchcloud/error.hpp"
 
-using touchcloud::calibration::NormalChart;
+using touchcloud::rsrt_calibration::NormalChart;
 
 TEST(NormalChart, AnglesAreGeodesicAndInvertible) {
   const std::vector<Eigen::Vector3d> references{Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.3, -0.2, 0.93),

@@ -8,7 +8,7 @@
 
 #include "calibration/parameter_spread.hpp"
 
-using touchcloud::calibration::parameter_spread;
+using touchcloud::rsrt_calibration::parameter_spread;
 
 TEST(ParameterSpread, CorrelatedClustersSpreadMoreThanIndependentResiduals) {
   // A mean from 4 residuals: J = ones, (J^T J)^-1 = 1/4.

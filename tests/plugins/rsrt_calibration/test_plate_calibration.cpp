@@ -37,12 +37,12 @@ optics::StereoRig perturbed(const optics::StereoRig& truth) {
 class PlateCalibration : public ::testing::Test {
  protected:
   // The true corner positions (left camera frame) of simulated presses, press by press, corner by corner.
-  std::vector<std::vector<Eigen::Vector3d>> truth_positions(const std::vector<board_press::BoardPose>& poses,
-                                                            const std::vector<calibration::PressCorners>& presses) {
+  std::vector<std::vector<Eigen::Vector3d>> truth_positions(const std::vector<checkerboard_press::BoardPose>& poses,
+                                                            const std::vector<rsrt_calibration::PressCorners>& presses) {
     const Eigen::Isometry3d left_from_sensor = truth_.sensor_from_left_camera().inverse();
     std::vector<std::vector<Eigen::Vector3d>> out;
     for (std::size_t p = 0; p < poses.size(); ++p) {
-      const auto all = board_press::board_corners_sensor({kBoard.cols, kBoard.rows, kBoard.square_mm}, poses[p],
+      const auto all = checkerboard_press::board_corners_sensor({kBoard.cols, kBoard.rows, kBoard.square_mm}, poses[p],
                                                          truth_.gel.radius_mm());
       out.emplace_back();
       for (const auto& c : presses[p].corners) out.back().push_back(left_from_sensor * all[static_cast<std::size_t>(c.id)]);
@@ -63,7 +63,7 @@ class PlateCalibration : public ::testing::Test {
       }
     return sum / n;
   }
-  std::vector<calibration::PressCorners> held_out_presses_;
+  std::vector<rsrt_calibration::PressCorners> held_out_presses_;
   std::vector<std::vector<Eigen::Vector3d>> held_out_truth_;
 
   sensor::GelStereoSensor truth_ = test::true_sensor();
@@ -72,9 +72,9 @@ class PlateCalibration : public ::testing::Test {
 };
 
 TEST_F(PlateCalibration, NoiseFreePressesGiveTheTruth) {
-  const auto poses = board_press::random_board_poses(8, 25.0, {4, 10}, rng_);
+  const auto poses = checkerboard_press::random_board_poses(8, 25.0, {4, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.0, rng_);
-  const auto r = calibration::calibrate_plate(perturbed(true_rig_), kBoard, presses);
+  const auto r = rsrt_calibration::calibrate_plate(perturbed(true_rig_), kBoard, presses);
   const auto& t = true_rig_.plate();
   EXPECT_NEAR(r.plate.distance_mm, t.distance_mm, 1e-6);
   EXPECT_LT(angle_deg(r.plate.normal, t.normal), 1e-6 * kDeg);
@@ -93,10 +93,10 @@ TEST_F(PlateCalibration, NoiseFreePressesGiveTheTruth) {
 }
 
 TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPresses) {
-  const auto poses = board_press::random_board_poses(24, 25.0, {4, 10}, rng_);
+  const auto poses = checkerboard_press::random_board_poses(24, 25.0, {4, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.1, rng_);
   const auto start = perturbed(true_rig_);
-  const auto r = calibration::calibrate_plate(start, kBoard, presses);
+  const auto r = rsrt_calibration::calibrate_plate(start, kBoard, presses);
   const auto& t = true_rig_.plate();
   std::cout << "0.1 px: d_xy " << r.plate.distance_mm << " (true " << t.distance_mm << ") mm, normal "
             << angle_deg(r.plate.normal, t.normal) << " deg off, mu " << r.plate.mu_silicone << " (true "
@@ -114,15 +114,15 @@ TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPres
   EXPECT_LT(angle_deg(r.plate.normal, t.normal), 4 * r.sigma_normal_deg);
 
   // Presses the solver did not see.
-  const auto held_out_poses = board_press::random_board_poses(8, 25.0, {4, 10}, rng_);
+  const auto held_out_poses = checkerboard_press::random_board_poses(8, 25.0, {4, 10}, rng_);
   const auto held_out = test::simulate_presses(truth_, held_out_poses, 0.1, rng_);
   held_out_truth_ = truth_positions(held_out_poses, held_out);
   const optics::StereoRig estimated(true_rig_.camera(optics::StereoSide::Left),
                                     true_rig_.camera(optics::StereoSide::Right), true_rig_.right_from_left(), r.plate);
   const auto nominal = sensor::make_stereo_rig(test::nominal_sensor(), true, true);
-  const double with_estimate = calibration::mean_corner_error_mm(estimated, kBoard, held_out);
-  const double with_truth = calibration::mean_corner_error_mm(true_rig_, kBoard, held_out);
-  const double with_nominal = calibration::mean_corner_error_mm(nominal, kBoard, held_out);
+  const double with_estimate = rsrt_calibration::mean_corner_error_mm(estimated, kBoard, held_out);
+  const double with_truth = rsrt_calibration::mean_corner_error_mm(true_rig_, kBoard, held_out);
+  const double with_nominal = rsrt_calibration::mean_corner_error_mm(nominal, kBoard, held_out);
   std::cout << "held out: mean corner error " << with_estimate << " mm (truth " << with_truth << ", nominal "
             << with_nominal << ")\n";
   EXPECT_LT(with_estimate, 0.1);
@@ -133,7 +133,7 @@ TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPres
   // Even ignoring refraction altogether (straight rays, the true cameras) the
   // neighbour distances move only ~0.03 mm: they are a weak check of a plate.
   const double with_pinhole =
-      calibration::mean_corner_error_mm(sensor::make_stereo_rig(truth_, false, true), kBoard, held_out);
+      rsrt_calibration::mean_corner_error_mm(sensor::make_stereo_rig(truth_, false, true), kBoard, held_out);
   std::cout << "held out: mean corner error ignoring refraction " << with_pinhole << " mm\n";
   EXPECT_GT(with_pinhole, 2 * with_estimate);
   // ... but puts the corners themselves far off, which the estimate does not.
@@ -146,10 +146,10 @@ TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPres
 }
 
 TEST_F(PlateCalibration, StartsFromTheNominalSensor) {
-  const auto poses = board_press::random_board_poses(24, 25.0, {4, 10}, rng_);
+  const auto poses = checkerboard_press::random_board_poses(24, 25.0, {4, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.1, rng_);
   const auto nominal = sensor::make_stereo_rig(test::nominal_sensor(), true, true);
-  const auto r = calibration::calibrate_plate(nominal, kBoard, presses);
+  const auto r = rsrt_calibration::calibrate_plate(nominal, kBoard, presses);
   const auto& t = true_rig_.plate();
   EXPECT_NEAR(r.plate.distance_mm, t.distance_mm, 0.2);
   EXPECT_LT(angle_deg(r.plate.normal, t.normal), 0.1);

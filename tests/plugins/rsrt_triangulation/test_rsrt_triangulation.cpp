@@ -21,9 +21,9 @@ struct TiltedSensor {
     test::write_file(scene_file, "object: {analytic: plane, height_mm: 10}\nsensor: {plate: {tilt_deg: [2, -3]}}\n"
                                  "effects: [contact, refraction]\n");
   }
-  rsrt::MarkerTriangulator triangulator(bool refraction = true, double max_gap_mm = 0.5) const {
+  rsrt_triangulation::MarkerTriangulator triangulator(bool refraction = true, double max_gap_mm = 0.5) const {
     const auto sensor = sensor::load_gelstereo_sensor(scene_file);
-    return rsrt::MarkerTriangulator(sensor::make_stereo_rig(sensor, true, false), sensor.sensor_from_left_camera(),
+    return rsrt_triangulation::MarkerTriangulator(sensor::make_stereo_rig(sensor, true, false), sensor.sensor_from_left_camera(),
                                     refraction, max_gap_mm);
   }
 };
@@ -32,7 +32,7 @@ struct TiltedSensor {
 
 TEST(MarkerTriangulator, ExactPixelsGiveTheMarkersAndTheFirstFrameIsTheReference) {
   TiltedSensor s;
-  sim::TouchSimulation sim(sim::load_scene(s.scene_file), 1);
+  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(s.scene_file), 1);
   auto tri = s.triangulator();
   sim.step({0, 0}, false);
   const TactileCloud rest = tri.triangulate(sim.marker_set());
@@ -60,7 +60,7 @@ TEST(MarkerTriangulator, ExactPixelsGiveTheMarkersAndTheFirstFrameIsTheReference
 
 TEST(MarkerTriangulator, PairsWhoseRaysMissEachOtherAreRefusedAndCounted) {
   TiltedSensor s;
-  sim::TouchSimulation sim(sim::load_scene(s.scene_file), 1);
+  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(s.scene_file), 1);
   sim.step({0, 0}, false);
   MarkerSet set = sim.marker_set();
   // Pair each left marker with the right marker of the next pair: rays of

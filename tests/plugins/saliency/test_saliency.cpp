@@ -4,6 +4,7 @@
 #include "salient_points.hpp"
 
 using namespace touchcloud;
+using namespace touchcloud::saliency;
 
 TEST(Saliency, KeepsMarkersAboveAlphaTimesTheMaximum) {
   // max 5 mm, alpha 0.2 -> threshold 1 mm; 1.0 itself is not above it.

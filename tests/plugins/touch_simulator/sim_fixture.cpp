@@ -12,11 +12,11 @@ std::filesystem::path write_plane_scene(const TempDir& dir, const std::string& e
   return file;
 }
 
-sim::Scene plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra) {
-  return sim::load_scene(write_plane_scene(dir, effects, extra));
+touch_simulator::Scene plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra) {
+  return touch_simulator::load_scene(write_plane_scene(dir, effects, extra));
 }
 
-const sim::SimulatedFrame& press_into(sim::TouchSimulation& sim, const Eigen::Vector2d& xy, double travel_mm) {
+const touch_simulator::SimulatedFrame& press_into(touch_simulator::TouchSimulation& sim, const Eigen::Vector2d& xy, double travel_mm) {
   for (int i = 0; i < 10000; ++i) {
     const auto& f = sim.step(xy, false);
     if (f.travel_past_contact_mm >= travel_mm) return f;

@@ -17,11 +17,11 @@ inline constexpr double kPlaneHeightMm = 10.0;
 // as the effects list, e.g. "[contact, refraction]".
 std::filesystem::path write_plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra = "",
                                         const std::string& name = "scene.yaml");
-sim::Scene plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra = "");
+touch_simulator::Scene plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra = "");
 
 // Steps a touch at `xy` without a stable-contact verdict until the sensor is
 // `travel_mm` past first contact; returns the last frame.
-const sim::SimulatedFrame& press_into(sim::TouchSimulation& sim, const Eigen::Vector2d& xy, double travel_mm);
+const touch_simulator::SimulatedFrame& press_into(touch_simulator::TouchSimulation& sim, const Eigen::Vector2d& xy, double travel_mm);
 
 // The InputError message `f` throws, or "" (with a test failure) when it does not.
 template <class F>

@@ -10,7 +10,7 @@
 
 using namespace touchcloud;
 using namespace touchcloud::test;
-using sim::TouchSimulation;
+using touch_simulator::TouchSimulation;
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include "gel/marker_layout.hpp"
 
-using namespace touchcloud::sim;
+using namespace touchcloud::touch_simulator;
 
 namespace {
 constexpr double kRadius = 32.5;

@@ -7,7 +7,7 @@
 #include "render/image_noise.hpp"
 #include "render/marker_renderer.hpp"
 
-using namespace touchcloud::sim;
+using namespace touchcloud::touch_simulator;
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
 using namespace touchcloud;
-using namespace touchcloud::sim;
+using namespace touchcloud::touch_simulator;
 
 namespace {
 

@@ -11,13 +11,13 @@ namespace {
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // Loads the scene and builds the simulator (where sensor and object problems surface).
-void simulate(const std::filesystem::path& file) { sim::TouchSimulation(sim::load_scene(file), 1); }
+void simulate(const std::filesystem::path& file) { touch_simulator::TouchSimulation(touch_simulator::load_scene(file), 1); }
 
 }  // namespace
 
 TEST(SceneFile, DefaultsAreThePapersSensor) {
   TempDir dir;
-  const sim::Scene s = plane_scene(dir, "[]");
+  const touch_simulator::Scene s = plane_scene(dir, "[]");
   EXPECT_EQ(s.sensor.gel.diameter_mm, 65.0);
   EXPECT_EQ(s.sensor.markers.min_spacing_mm, 1.5);
   EXPECT_EQ(s.sensor.markers.mean_spacing_mm, 1.8);
@@ -41,11 +41,11 @@ TEST(SceneFile, DefaultsAreThePapersSensor) {
 
 TEST(SceneFile, EffectsComeAsNamesOrWithFields) {
   TempDir dir;
-  const sim::Scene s = plane_scene(dir, "[contact, {elastic_spread: {sigma_mm: 2.5}}, {marker_dropout: {probability: 0.2}}]");
-  EXPECT_TRUE(s.effects.has(sim::Effect::Contact));
-  EXPECT_TRUE(s.effects.has(sim::Effect::ElasticSpread));
-  EXPECT_TRUE(s.effects.has(sim::Effect::MarkerDropout));
-  EXPECT_FALSE(s.effects.has(sim::Effect::Render));
+  const touch_simulator::Scene s = plane_scene(dir, "[contact, {elastic_spread: {sigma_mm: 2.5}}, {marker_dropout: {probability: 0.2}}]");
+  EXPECT_TRUE(s.effects.has(touch_simulator::Effect::Contact));
+  EXPECT_TRUE(s.effects.has(touch_simulator::Effect::ElasticSpread));
+  EXPECT_TRUE(s.effects.has(touch_simulator::Effect::MarkerDropout));
+  EXPECT_FALSE(s.effects.has(touch_simulator::Effect::Render));
   EXPECT_EQ(s.effect_parameters.spread_sigma_mm, 2.5);
   EXPECT_EQ(s.effect_parameters.dropout_probability, 0.2);
 }
@@ -54,7 +54,7 @@ TEST(SceneFile, UnknownEffectIsNamedWithItsPlace) {
   TempDir dir;
   const auto file = write_plane_scene(dir, "[contact, blurr]");
   try {
-    sim::load_scene(file);
+    touch_simulator::load_scene(file);
     FAIL() << "an unknown effect was accepted";
   } catch (const InputError& e) {
     ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
@@ -91,7 +91,7 @@ TEST(SceneFile, NonPositiveSizesAreNamed) {
   }
   // The object's scale sits beside its kind.
   write_file(dir / "scaled.yaml", "object: {analytic: fox_mask, scale: -1}\n");
-  const std::string m = input_error([&] { sim::load_scene(dir / "scaled.yaml"); });
+  const std::string m = input_error([&] { touch_simulator::load_scene(dir / "scaled.yaml"); });
   EXPECT_TRUE(has(m, "object.scale: -1 must be > 0")) << m;
 }
 

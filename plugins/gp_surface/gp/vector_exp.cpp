@@ -41,7 +41,10 @@ void exp_in_place(Eigen::Ref<Eigen::ArrayXd> v) {
     return;
   }
 #endif
-  v = v.exp();
+  // Eigen's exp saturates near -708 (exp(-inf) came out 5.6e-309); below the
+  // point where std::exp underflows to 0, give 0 as std::exp does.
+  constexpr double kUnderflow = -745.2;
+  v = (v < kUnderflow).select(0.0, v.exp());
 }
 
 const char* vector_exp_path() {

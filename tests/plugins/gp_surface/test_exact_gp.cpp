@@ -123,7 +123,9 @@ TEST(GpExact, ExactDuplicatesAverage) {
         ExactGp gp_shifted(kind, {4.0, 10.0, noise});
         gp_shifted.fit(shifted, z);
         ASSERT_EQ(gp_shifted.centring().x_mm, 0.0) << "and survive centring";
-        EXPECT_NEAR(gp_shifted.mean(at)[0], gp.mean(at)[0], 1e-6)
+        // Ten times tighter than the average above; Eigen's Cholesky (the
+        // build without OpenBLAS) lands 1.9e-6 mm apart at matern52, noise 0.
+        EXPECT_NEAR(gp_shifted.mean(at)[0], gp.mean(at)[0], 1e-5)
             << to_string(kind) << " noise " << noise << " shift " << shift;
       }
     }

@@ -159,3 +159,19 @@ TEST_F(PipelineRunner, SummaryRecordsCheckAndLoadTimesApartFromTheRun) {
   ASSERT_EQ(r.timings.size(), 2u);
   EXPECT_EQ(r.timings[0].check_s, slow);
 }
+
+// summary.json records what was used: for a parameter left "not set", the
+// value the stage chose (here the scene's workspace and grid); what else the
+// stage reports it used; and the libraries the loaded code was built with.
+TEST_F(PipelineRunner, SummaryRecordsTheValueUsedForAParameterLeftNotSet) {
+  const fs::path out = dir_ / "out";
+  const std::string scene = std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/fox_mask/scene.yaml";
+  run("stages:\n  - id: plan\n    plugin: next_touch\n    params: {scene: " + scene + ", workspace_y_mm: [0, 12]}\n",
+      1, out);
+  const auto j = nlohmann::json::parse(touchcloud::test::read_file(out / "summary.json"));
+  const auto& params = j["stages"][0]["params"];
+  EXPECT_EQ(params["grid"], nlohmann::json::array({14, 14}));
+  EXPECT_EQ(params["workspace_x_mm"], nlohmann::json::array({-60.0, 60.0}));
+  EXPECT_EQ(params["workspace_y_mm"], nlohmann::json::array({0.0, 12.0}));
+  EXPECT_TRUE(j["versions"].contains("eigen")) << "recorded by the sensing library, not the runtime";
+}

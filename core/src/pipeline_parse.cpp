@@ -188,6 +188,29 @@ bool parse_double(const std::string& text, double& out) {
   return parse_number(s, out);
 }
 
+// A YAML sequence of `T`, each element read by `parse`; `what` names them in
+// the error ("numbers", "whole numbers").
+template <class T, class Parse>
+std::optional<ParamValue> convert_list(const YAML::Node& value, const char* what, const char* example, Parse parse,
+                                       std::string& error) {
+  if (!value.IsSequence()) {
+    error = std::string("expected a list of ") + what + " like " + example + ", got '" +
+            (value.IsScalar() ? value.Scalar() : std::string("a mapping")) + "'";
+    return std::nullopt;
+  }
+  std::vector<T> list;
+  for (const auto& item : value) {
+    T x{};
+    if (!item.IsScalar() || !parse(item.Scalar(), x)) {
+      error = std::string("expected a list of ") + what + ", but element " + std::to_string(list.size()) + " is '" +
+              (item.IsScalar() ? item.Scalar() : std::string("not a number")) + "'";
+      return std::nullopt;
+    }
+    list.push_back(x);
+  }
+  return ParamValue(list);
+}
+
 }  // namespace
 
 PipelineDoc parse_pipeline(const fs::path& file, std::vector<Diagnostic>& diagnostics) {
@@ -241,40 +264,10 @@ std::optional<ParamValue> convert_param(const ParamSpec& spec, const YAML::Node&
       error = "expected a string, got a list or mapping";
       return std::nullopt;
     }
-    case ParamType::DoubleList: {
-      if (!value.IsSequence()) {
-        error = "expected a list of numbers like [1, 2, 3], got '" + (scalar ? s : std::string("a mapping")) + "'";
-        return std::nullopt;
-      }
-      std::vector<double> list;
-      for (const auto& item : value) {
-        double d = 0;
-        if (!item.IsScalar() || !parse_double(item.Scalar(), d)) {
-          error = "expected a list of numbers, but element " + std::to_string(list.size()) + " is '" +
-                  (item.IsScalar() ? item.Scalar() : std::string("not a number")) + "'";
-          return std::nullopt;
-        }
-        list.push_back(d);
-      }
-      return ParamValue(list);
-    }
-    case ParamType::IntList: {
-      if (!value.IsSequence()) {
-        error = "expected a list of whole numbers like [14, 14], got '" + (scalar ? s : std::string("a mapping")) + "'";
-        return std::nullopt;
-      }
-      std::vector<std::int64_t> list;
-      for (const auto& item : value) {
-        std::int64_t i = 0;
-        if (!item.IsScalar() || !parse_number(item.Scalar(), i)) {
-          error = "expected a list of whole numbers, but element " + std::to_string(list.size()) + " is '" +
-                  (item.IsScalar() ? item.Scalar() : std::string("not a number")) + "'";
-          return std::nullopt;
-        }
-        list.push_back(i);
-      }
-      return ParamValue(list);
-    }
+    case ParamType::DoubleList:
+      return convert_list<double>(value, "numbers", "[1, 2, 3]", parse_double, error);
+    case ParamType::IntList:
+      return convert_list<std::int64_t>(value, "whole numbers", "[14, 14]", parse_number<std::int64_t>, error);
   }
   error = "unsupported parameter type";
   return std::nullopt;

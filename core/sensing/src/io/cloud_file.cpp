@@ -9,6 +9,7 @@
 #include <pcl/conversions.h>
 #include <pcl/io/ply_io.h>
 
+#include "io/cloud_file_checks.hpp"
 #include "touchcloud/error.hpp"
 
 namespace fs = std::filesystem;
@@ -22,6 +23,7 @@ namespace {
 // none (a crash), and fromPCLPointCloud2 indexes an empty data vector for an
 // empty cloud (undefined behaviour, caught by UBSan).
 void check_pcd_header(const fs::path& file) {
+  cloud_checks::check_pcd_file(file);
   pcl::PCLPointCloud2 header;
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
@@ -60,6 +62,7 @@ CloudFile read_cloud_file(const fs::path& file, NonFinitePoints nonfinite) {
     check_pcd_header(file);
     status = pcl::io::loadPCDFile(file.string(), blob);
   } else {
+    cloud_checks::check_ply_counts(file);
     status = pcl::io::loadPLYFile(file.string(), blob);
   }
   if (status < 0)

@@ -1,4 +1,5 @@
-// Reading ground-truth meshes through PCL (VTK readers for STL, OBJ and PLY).
+// Reading ground-truth meshes: PLY with our own reader (VTK's crashed on
+// corrupt files), STL and OBJ through PCL's VTK readers.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -9,6 +10,8 @@
 #include <pcl/io/vtk_lib_io.h>
 #include <vtkObject.h>
 
+#include "scoring/ply_mesh_reader.hpp"
+#include "scoring/stl_size_check.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
@@ -67,6 +70,8 @@ TriangleMesh read_triangle_mesh(const fs::path& file) {
   const std::string ext = lower_extension(file);
   if (ext != ".stl" && ext != ".obj" && ext != ".ply")
     throw InputError(name + ": unsupported mesh extension '" + ext + "' (use .stl, .obj or .ply)");
+  if (ext == ".ply") return read_ply_mesh(file);
+  if (ext == ".stl") check_binary_stl_size(file);
 
   pcl::PolygonMesh polygons;
   {

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "output_name.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud {
@@ -55,8 +56,7 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
     throw InputError("stage '" + stage_id_ + "' writes '" + file_name +
                      "' but this run has no output folder (use --out DIR)");
   const std::filesystem::path rel(file_name);
-  if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0)
-    throw ParameterError("path", "output file '" + file_name + "' must stay inside the output folder");
+  if (auto why = output_name_problem(file_name)) throw ParameterError("path", *why);
   std::lock_guard<std::mutex> lock(record_mutex);
   const auto path = record_.staging_dir / rel.lexically_normal();
   std::filesystem::create_directories(path.parent_path());

@@ -1,4 +1,5 @@
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/file_write.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -278,15 +279,17 @@ void write_gelstereo_sensor(const GelStereoSensor& sensor, const fs::path& file,
 
   fs::path temporary = file;
   temporary += ".partial";
-  {
-    std::ofstream f(temporary);
-    if (!f) throw InputError("cannot write sensor file " + temporary.string());
-    std::istringstream lines(comment);
-    for (std::string line; std::getline(lines, line);) f << "# " << line << "\n";
-    f << out.c_str() << "\n";
-    if (!f) throw InputError("cannot write sensor file " + temporary.string());
-  }
+  std::ostringstream text;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) text << "# " << line << "\n";
+  text << out.c_str() << "\n";
   std::error_code ec;
+  try {
+    write_file(temporary, text.str());  // checks every write and the close
+  } catch (...) {
+    fs::remove(temporary, ec);
+    throw;
+  }
   fs::rename(temporary, file, ec);
   if (ec) throw InputError("cannot write sensor file " + file.string() + ": " + ec.message());
 }

@@ -1,4 +1,5 @@
 #include "touchcloud/run_context.hpp"
+#include "touchcloud/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +40,7 @@ RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& 
 
 void RunContext::metric(const std::string& name, double value, const std::string& unit) {
   if (!std::isfinite(value))
-    throw RunError("metric '" + name + "' is not finite (" + std::to_string(value) + ")");
+    throw RunError("metric '" + name + "' is not finite (" + number_text(value) + ")");
   std::lock_guard<std::mutex> lock(record_mutex);
   auto& series = record_.metrics[stage_id_ + "." + name];
   series.unit = unit;

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages touchcloud builds and tests with. Does
-# nothing when they are all present; needs root (or sudo) otherwise.
+# Installs the Debian 12 packages touchcloud builds and tests with (with
+# --fuzz, also those scripts/fuzz.sh needs). Does nothing when they are all
+# present; needs root (or sudo) otherwise.
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config python3
@@ -9,6 +10,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   python3-matplotlib
 )
+# scripts/fuzz.sh: Debian's clang with its libFuzzer and sanitizer runtimes.
+if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

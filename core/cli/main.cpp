@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/interrupt_cleanup.hpp"
 #include "touchcloud/version.hpp"
 #include "verbs.hpp"
 
@@ -27,6 +28,9 @@ void report(const touchcloud::InputError& e) {
 
 int main(int argc, char** argv) {
   using namespace touchcloud::cli;
+  // First, before any thread starts: Ctrl-C and SIGTERM remove the staging
+  // folder of the run in progress.
+  touchcloud::clean_up_on_interrupt();
   // OpenBLAS (loaded with the GP plugin) keeps its worker threads spinning
   // for ~0.1 s after each call, taking a core from the stages that follow
   // (the per-touch scoring, on both cores). Let them sleep at once unless the

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "touchcloud/pipeline.hpp"
+#include "seed_option.hpp"
 #include "verbs.hpp"
 
 namespace touchcloud::cli {
@@ -22,6 +23,7 @@ Action* add_run_verb(CLI::App& app) {
   cmd->add_option("pipeline", o.pipeline, "pipeline YAML file")->required();
   cmd->add_option("--set", o.sets, "override a parameter: STAGE.PARAM=VALUE (repeatable)");
   cmd->add_option("--seed", o.seed, "seed for every random draw; a seeded run reproduces bit for bit")
+      ->check(seed_value())
       ->capture_default_str();
   cmd->add_option("--out", o.out, "output folder (default: out/<pipeline name>)");
   cmd->add_flag("-q,--quiet", o.quiet, "print no stage logs");
@@ -33,6 +35,11 @@ Action* add_run_verb(CLI::App& app) {
       Pipeline p = Pipeline::load(o.pipeline, overrides, registry);
       RunOptions options;
       options.seed = o.seed;
+      // The pipeline's name is an identifier (the parser checks it), and a
+      // name taken from the file is one component: the default stays in out/.
+      if (o.out.empty() && (p.name().empty() || p.name() == "." || p.name() == ".." ||
+                            p.name().find('/') != std::string::npos))
+        throw InputError("pipeline name '" + p.name() + "' cannot name a folder in out/; give --out DIR");
       options.out_dir = o.out.empty() ? std::filesystem::path("out") / p.name() : std::filesystem::path(o.out);
       options.quiet = o.quiet;
       const RunResult r = run_pipeline(p, options);

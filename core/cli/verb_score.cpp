@@ -19,6 +19,7 @@
 #include "score_inputs.hpp"
 #include "touchcloud/scoring/cloud_metrics.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
+#include "seed_option.hpp"
 #include "verbs.hpp"
 
 namespace fs = std::filesystem;
@@ -351,7 +352,7 @@ Action* add_score_verb(CLI::App& app) {
                   "points sampled from a mesh ground truth (default 0: 100 per mm^2 of surface, i.e. 0.1 mm mean "
                   "spacing, at least 100000 and at most 10000000; see docs/scoring.md)")
       ->capture_default_str();
-  cmd->add_option("--seed", o.seed, "seed of the mesh sampling")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "seed of the mesh sampling")->check(seed_value())->capture_default_str();
   cmd->add_option("--metrics", o.metrics,
                   "metrics to compute, comma-separated: chamfer_est_to_gt (the paper's Eq. 11), chamfer_gt_to_est, "
                   "chamfer_symmetric (mean of both), hausdorff, fscore, or all; chamfer_est_to_gt alone skips "

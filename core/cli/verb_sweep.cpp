@@ -13,6 +13,8 @@
 
 #include "sweep_grid.hpp"
 #include "touchcloud/pipeline.hpp"
+#include "seed_option.hpp"
+#include "touchcloud/file_write.hpp"
 #include "verbs.hpp"
 
 namespace fs = std::filesystem;
@@ -41,7 +43,13 @@ std::string number(double v) { return format_value(ParamValue(v)); }
 // Writes `text` to `file` through a temporary name, so a reader never sees half a file.
 void write_atomically(const fs::path& file, const std::string& text) {
   const fs::path tmp = file.string() + ".tmp-" + std::to_string(::getpid());
-  std::ofstream(tmp) << text;
+  try {
+    write_file(tmp, text);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
   fs::rename(tmp, file);
 }
 
@@ -127,7 +135,7 @@ Action* add_sweep_verb(CLI::App& app) {
   cmd->add_option("--set", o.sets, "a fixed override for every run: STAGE.PARAM=VALUE");
   cmd->add_option("--repeats", o.repeats, "runs per setting, with seeds seed, seed+1, ...")
       ->check(CLI::Range(1, 1000))->capture_default_str();
-  cmd->add_option("--seed", o.seed, "seed of the first repeat")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "seed of the first repeat")->check(seed_value())->capture_default_str();
   cmd->add_option("--out", o.out, "output folder: sweep.csv, sweep_summary.csv, the plot, runs/")->required();
   cmd->add_option("--accuracy", o.accuracy,
                   "metric plotted as accuracy, lower is better (default: the first metric whose name has 'chamfer')");

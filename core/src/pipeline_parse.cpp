@@ -6,9 +6,11 @@
 #include <cmath>
 #include <fstream>
 #include <regex>
+#include <set>
 
 #include "nearest_name.hpp"
 #include "pipeline_model.hpp"
+#include "yaml_document_checks.hpp"
 
 namespace fs = std::filesystem;
 
@@ -39,8 +41,12 @@ class Parser {
     }
     check_keys(root, {"pipeline", "description", "stages"}, "pipeline");
     if (const auto name = root["pipeline"]) {
-      if (name.IsScalar()) doc.name = name.Scalar();
-      else error(name, "'pipeline' is the pipeline's name, a string");
+      // The name picks the default output folder (out/<name>): an
+      // identifier cannot lead it anywhere else.
+      if (name.IsScalar() && std::regex_match(name.Scalar(), kIdPattern)) doc.name = name.Scalar();
+      else
+        error(name, "'pipeline' is the pipeline's name, an identifier (letters, digits, '_'; not starting with a "
+                    "digit), got '" + (name.IsScalar() ? quoted_excerpt(name.Scalar()) : std::string("a list or mapping")) + "'");
     }
     const auto stages = root["stages"];
     if (!stages) error(root, "the pipeline has no 'stages'");
@@ -59,7 +65,10 @@ class Parser {
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        error(kv.first, "unknown key '" + key + "' in " + what + did_you_mean(key, allowed) + " (allowed: " + list + ")");
+        // Quote no more than a key: a file that is not a pipeline (a password
+        // file) must not be echoed back line by line.
+        error(kv.first, "unknown key '" + quoted_excerpt(key) + "' in " + what + did_you_mean(key, allowed) +
+                            " (allowed: " + list + ")");
       }
     }
   }
@@ -71,7 +80,16 @@ class Parser {
       return nodes;
     }
     if (list.size() == 0) error(list, "'stages' is empty");
-    for (const auto& item : list) nodes.push_back(parse_node(item));
+    for (const auto& item : list) {
+      // An alias repeats a stage (and may hold the loop it is in): refuse it
+      // rather than recurse or multiply.
+      const YAML::Mark m = item.Mark();
+      if (!m.is_null() && !stage_marks_.insert({m.line, m.column}).second) {
+        error(item, "this stage appears a second time (a YAML alias); every stage is written once, with its own id");
+        continue;
+      }
+      nodes.push_back(parse_node(item));
+    }
     return nodes;
   }
 
@@ -85,7 +103,7 @@ class Parser {
     const auto id = item["id"];
     if (!id) error(item, "the stage has no 'id'");
     else if (!id.IsScalar() || !std::regex_match(id.Scalar(), kIdPattern))
-      error(id, "stage id '" + (id.IsScalar() ? id.Scalar() : std::string("?")) +
+      error(id, "stage id '" + (id.IsScalar() ? quoted_excerpt(id.Scalar()) : std::string("?")) +
                     "' is not an identifier (letters, digits, '_'; not starting with a digit)");
     else {
       node.id = id.Scalar();
@@ -174,6 +192,7 @@ class Parser {
 
   fs::path file_;
   std::vector<Diagnostic>& diags_;
+  std::set<std::pair<int, int>> stage_marks_;  // line and column of every stage read
 };
 
 template <class T>
@@ -214,6 +233,11 @@ std::optional<ParamValue> convert_list(const YAML::Node& value, const char* what
 }  // namespace
 
 PipelineDoc parse_pipeline(const fs::path& file, std::vector<Diagnostic>& diagnostics) {
+  // A folder or a FIFO opens as a stream too: refuse anything but a file.
+  if (auto why = not_a_regular_file(file)) {
+    diagnostics.push_back({{file.string()}, "cannot read the pipeline file: " + *why});
+    return {};
+  }
   std::ifstream in(file);
   if (!in) {
     diagnostics.push_back({{file.string()}, "cannot read the pipeline file: " + std::string(std::strerror(errno))});
@@ -223,13 +247,16 @@ PipelineDoc parse_pipeline(const fs::path& file, std::vector<Diagnostic>& diagno
   try {
     root = YAML::Load(in);
   } catch (const YAML::Exception& e) {
-    diagnostics.push_back({{file.string(), e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg});
+    diagnostics.push_back({{file.string(), e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + yaml_error_text(e)});
     return {};
   }
   if (!root || root.IsNull()) {
     diagnostics.push_back({{file.string()}, "the pipeline file is empty"});
     return {};
   }
+  const std::size_t before = diagnostics.size();
+  check_duplicate_keys(root, file, diagnostics);
+  if (diagnostics.size() > before) return {};
   return Parser(file, diagnostics).parse(root);
 }
 

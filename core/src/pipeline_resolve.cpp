@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "nearest_name.hpp"
+#include "output_name.hpp"
 #include "touchcloud/run_context.hpp"
 #include "pipeline_model.hpp"
 
@@ -101,7 +102,11 @@ class Resolver {
     }
     for (auto& p : node.params)
       if (p.name == name) {
-        p = {name, value, where, true};
+        // reset() rebinds this stage's value; assigning a YAML::Node would
+        // overwrite the node itself, which a YAML anchor shares with others.
+        p.value.reset(value);
+        p.where = where;
+        p.from_command_line = true;
         return;
       }
     node.params.push_back({name, value, where, true});
@@ -176,6 +181,13 @@ class Resolver {
         continue;
       }
       if (spec->path_role == PathRole::InputFile && !resolve_input_file(*spec, *value, p, who)) continue;
+      if (spec->path_role == PathRole::OutputFile) {
+        // `validate` refuses what `run` would: a file outside the output folder.
+        if (auto why = output_name_problem(std::get<std::string>(*value))) {
+          error(p.where, who + ", parameter '" + p.name + "': " + *why);
+          continue;
+        }
+      }
       try {
         s->params->assign(p.name, *value);
         s->values[p.name] = *value;
@@ -219,6 +231,12 @@ class Resolver {
       error(p.where, who + ", parameter '" + spec.name + "': " + path.string() + " is a folder, not a file");
       return false;
     }
+    // Opening a FIFO blocks until someone writes to it.
+    if (!fs::is_regular_file(path, ec)) {
+      error(p.where, who + ", parameter '" + spec.name + "': " + path.string() +
+                         " is not a regular file (a FIFO, socket or device)");
+      return false;
+    }
     if (!std::ifstream(path)) {
       error(p.where, who + ", parameter '" + spec.name + "': cannot read input file " + path.string());
       return false;
@@ -247,6 +265,12 @@ class Resolver {
           continue;
         }
         if (!wired.insert(ref.port).second) error(ref.where, who + ": input '" + ref.port + "' is wired twice");
+        if (ref.stage == n.id && !ref.previous) {
+          error(ref.where, "the inputs form a cycle: " + n.id + " -> " + n.id + " (stage '" + n.id +
+                               "' reads its own output " + ref.stage + "." + ref.output +
+                               "; inside a loop, read the previous iteration's with '@previous')");
+          continue;
+        }
         const PortSpec* out = find_output(ref, who + ", input '" + ref.port + "'");
         if (!out) continue;
         if (out->type != in->type) {

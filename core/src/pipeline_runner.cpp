@@ -2,16 +2,16 @@
 // iterate up to their budget), finish, then publish outputs atomically.
 // Background stages get their calls (configure included) queued to one
 // worker thread; their outputs are futures, which a reader waits for.
-#include <unistd.h>
 
 #include <chrono>
-#include <fstream>
 #include <future>
 #include <optional>
 
 #include "background_worker.hpp"
+#include "output_staging.hpp"
 #include "pipeline_model.hpp"
 #include "run_summary.hpp"
+#include "touchcloud/file_write.hpp"
 
 namespace fs = std::filesystem;
 
@@ -23,42 +23,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// The output folder as the run sees it: files go to a hidden staging folder
-// and move into place only on success, so a failed run leaves nothing behind.
-class OutputStaging {
- public:
-  explicit OutputStaging(const fs::path& out_dir) : out_(out_dir) {
-    if (out_.empty()) return;
-    std::error_code ec;
-    created_out_ = !fs::exists(out_, ec);
-    fs::create_directories(out_, ec);
-    if (ec) throw InputError("cannot create the output folder " + out_.string() + ": " + ec.message());
-    staging_ = out_ / (".touchcloud-staging-" + std::to_string(::getpid()));
-    fs::remove_all(staging_, ec);
-    fs::create_directories(staging_, ec);
-    if (ec) throw InputError("cannot write in the output folder " + out_.string() + ": " + ec.message());
-  }
-  ~OutputStaging() {
-    std::error_code ec;
-    if (!staging_.empty()) fs::remove_all(staging_, ec);
-    if (!committed_ && created_out_ && fs::is_empty(out_, ec)) fs::remove(out_, ec);
-  }
-  const fs::path& dir() const { return staging_; }
-
-  void commit(const std::vector<std::string>& files) {
-    for (const auto& f : files) {
-      const fs::path target = out_ / f;
-      fs::create_directories(target.parent_path());
-      fs::rename(staging_ / f, target);
-    }
-    committed_ = true;
-  }
-
- private:
-  fs::path out_, staging_;
-  bool created_out_ = false, committed_ = false;
-};
 
 // A stage output as the runner holds it: the value, or, from a background
 // stage, the outputs of the call that computes it (which may still run).
@@ -117,7 +81,7 @@ class Runner {
     result.load_time_s = pipeline_.load_time_s;
     if (!options_.out_dir.empty()) {
       auto files = record.outputs;
-      std::ofstream(staging.dir() / "summary.json") << make_summary(pipeline_, result, options_).dump(2) << "\n";
+      write_file(staging.dir() / "summary.json", make_summary(pipeline_, result, options_).dump(2) + "\n");
       files.push_back("summary.json");
       staging.commit(files);
     }

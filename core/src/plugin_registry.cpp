@@ -1,6 +1,8 @@
 #include "touchcloud/plugin_registry.hpp"
 
 #include <dlfcn.h>
+#include <elf.h>
+#include <link.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -34,6 +36,19 @@ std::string loader_error(const fs::path& library) {
   return msg ? msg : "unknown loader error";
 }
 
+// True when `name` in `lib` is a function. A descriptor exported as data
+// (the struct itself rather than the function returning it) would be called
+// as code and crash the loader; the ELF symbol type tells the two apart.
+bool exports_function(const boost::dll::shared_library& lib, const char* name) {
+  void* address = dlsym(lib.native(), name);
+  if (!address) return false;
+  Dl_info info{};
+  void* entry = nullptr;  // the symbol's ElfW(Sym)
+  if (!dladdr1(address, &info, &entry, RTLD_DL_SYMENT) || !entry) return false;
+  const auto* symbol = static_cast<const ElfW(Sym)*>(entry);
+  return info.dli_saddr == address && ELF64_ST_TYPE(symbol->st_info) == STT_FUNC;
+}
+
 std::string folder_list(const std::vector<fs::path>& folders) {
   std::string s;
   for (const auto& f : folders) s += (s.empty() ? "" : ", ") + f.string();
@@ -44,7 +59,11 @@ std::string folder_list(const std::vector<fs::path>& folders) {
 
 std::string plugin_file_name(const std::string& name) { return kPrefix + name + kSuffix; }
 
-std::unique_ptr<Stage> LoadedPlugin::create() const { return std::unique_ptr<Stage>(descriptor_->create()); }
+std::unique_ptr<Stage> LoadedPlugin::create() const {
+  std::unique_ptr<Stage> stage(descriptor_->create());
+  if (!stage) throw InputError("plugin '" + name_ + "' (" + library_.string() + "): create() returned no stage");
+  return stage;
+}
 
 std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const std::string& expected_name) {
   auto lib = std::make_shared<boost::dll::shared_library>();
@@ -56,6 +75,10 @@ std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const
   if (!lib->has(kPluginEntryPoint))
     throw InputError("plugin '" + expected_name + "': " + library.string() + " is not a touchcloud plugin (it exports no " +
                      kPluginEntryPoint + ")");
+  const std::string who = "plugin '" + expected_name + "' (" + library.string() + ")";
+  if (!exports_function(*lib, kPluginEntryPoint))
+    throw InputError(who + " exports " + kPluginEntryPoint + " as data, not as the function that returns the "
+                     "descriptor; build it with TOUCHCLOUD_PLUGIN");
   const auto entry = lib->get<const PluginDescriptor*()>(kPluginEntryPoint);
   const PluginDescriptor* d = entry();
   if (!d) throw InputError("plugin '" + expected_name + "': " + library.string() + " returned no descriptor");
@@ -63,6 +86,8 @@ std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const
     throw InputError("plugin '" + expected_name + "' (" + library.string() + ") was built for plugin ABI version " +
                      std::to_string(d->abi_version) + ", but this touchcloud " + kVersion + " needs ABI version " +
                      std::to_string(kPluginAbiVersion) + "; rebuild the plugin against this toolkit");
+  if (!d->name) throw InputError(who + ": its descriptor has no name (NULL)");
+  if (!d->create) throw InputError(who + ": its descriptor has no create() function (NULL)");
   if (expected_name != d->name)
     throw InputError("plugin library " + library.string() + " calls itself '" + d->name + "', not '" +
                      expected_name + "'; its file name must be " + plugin_file_name(d->name));
@@ -75,10 +100,16 @@ std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const
   plugin->toolkit_version_ = d->toolkit_version ? d->toolkit_version : "";
   plugin->library_ = library;
   // The schema is what a fresh instance declares.
-  auto stage = plugin->create();
   ParameterSet params;
   PortSet ports;
-  stage->declare(params, ports);
+  try {
+    auto stage = plugin->create();
+    stage->declare(params, ports);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(who + ": a new stage failed to declare its parameters and ports: " + e.what());
+  }
   plugin->schema_ = {params.specs(), ports.inputs(), ports.outputs()};
   return plugin;
 }

@@ -1,4 +1,5 @@
 #include "touchcloud/run_context.hpp"
+#include "touchcloud/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "output_name.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud {
@@ -38,7 +40,7 @@ RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& 
 
 void RunContext::metric(const std::string& name, double value, const std::string& unit) {
   if (!std::isfinite(value))
-    throw RunError("metric '" + name + "' is not finite (" + std::to_string(value) + ")");
+    throw RunError("metric '" + name + "' is not finite (" + number_text(value) + ")");
   std::lock_guard<std::mutex> lock(record_mutex);
   auto& series = record_.metrics[stage_id_ + "." + name];
   series.unit = unit;
@@ -60,8 +62,7 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
     throw InputError("stage '" + stage_id_ + "' writes '" + file_name +
                      "' but this run has no output folder (use --out DIR)");
   const std::filesystem::path rel(file_name);
-  if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0)
-    throw ParameterError("path", "output file '" + file_name + "' must stay inside the output folder");
+  if (auto why = output_name_problem(file_name)) throw ParameterError("path", *why);
   std::lock_guard<std::mutex> lock(record_mutex);
   const auto path = settings_.staging_dir / rel.lexically_normal();
   std::filesystem::create_directories(path.parent_path());

@@ -3,6 +3,7 @@
 // TRUE sensor, its inner corners imaged through the plate by both cameras,
 // with pixel noise; what cv::findChessboardCorners would give on real images.
 #include <cmath>
+#include "touchcloud/number_text.hpp"
 #include <sstream>
 
 #include "board/board_press.hpp"
@@ -68,7 +69,7 @@ class CheckerboardPress final : public Stage {
       if (std::abs(presses_[i]) >= 90 || std::abs(presses_[i + 1]) >= 90 || !(depth > 0) ||
           depth > sensor.gel.radius_mm())
         throw ParameterError("presses", "press " + std::to_string(i / 3) + ": tilts must be within (-90, 90) deg"
-                                        " and the depth in (0, " + std::to_string(sensor.gel.radius_mm()) + "] mm");
+                                        " and the depth in (0, " + number_text(sensor.gel.radius_mm()) + "] mm");
     }
     if (depth_range_mm_[1] > sensor.gel.radius_mm())
       throw ParameterError("depth_range_mm", "goes deeper than the gel's radius");

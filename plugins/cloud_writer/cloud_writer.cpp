@@ -1,8 +1,5 @@
 // cloud_writer: writes a point cloud into the run's output folder.
-#include <pcl/console/print.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
-
+#include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 
@@ -31,11 +28,7 @@ class CloudWriter final : public Stage {
     if (!cloud || cloud->empty()) throw RunError("the cloud to write is empty");
     const std::string name = ctx.with_iteration(path_);
     const auto file = ctx.output_path(name);
-    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    const bool ply = file.extension() == ".ply";
-    const int status = ply ? pcl::io::savePLYFile(file.string(), *cloud, binary_)
-                           : pcl::io::savePCDFile(file.string(), *cloud, binary_);
-    if (status < 0) throw RunError("could not write " + file.string());
+    write_cloud_file(file, *cloud, binary_);  // every write checked
     ctx.log("wrote " + std::to_string(cloud->size()) + " points to " + name);
   }
 };

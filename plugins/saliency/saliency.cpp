@@ -13,7 +13,8 @@ class Saliency final : public Stage {
   std::size_t last_count_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("alpha", alpha_, 0.2).range(0.0, 1.0).doc("keep markers displaced more than alpha * max displacement");
+    p.add("alpha", alpha_, 0.2).at_least(0.0).below(1.0)  // at 1 nothing is above alpha * max
+        .doc("keep markers displaced more than alpha * max displacement");
     p.add("keep", keep_, saliency::SalientSelection::All, {{"all", saliency::SalientSelection::All}, {"deepest", saliency::SalientSelection::Deepest}})
         .doc("all salient markers, or only the most displaced one (the single-point baseline SP)");
     p.add("frame", frame_, Frame::Base, {{"base", Frame::Base}, {"sensor", Frame::Sensor}}).doc("frame of the output cloud");

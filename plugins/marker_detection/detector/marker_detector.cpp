@@ -1,4 +1,5 @@
 #include "detector/marker_detector.hpp"
+#include "touchcloud/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -57,14 +58,14 @@ double median(std::vector<double> values, double fallback) {
 void MarkerDetectorOptions::check() const {
   if (!(min_diameter_px > 0)) throw ParameterError("diameter_px", "the smallest diameter must be > 0 px");
   if (!(max_diameter_px >= min_diameter_px))
-    throw ParameterError("diameter_px", "[min, max] must have min <= max, got [" + std::to_string(min_diameter_px) +
-                                            ", " + std::to_string(max_diameter_px) + "]");
+    throw ParameterError("diameter_px", "[min, max] must have min <= max, got [" + number_text(min_diameter_px) +
+                                            ", " + number_text(max_diameter_px) + "]");
   if (max_diameter_px > 200) throw ParameterError("diameter_px", "the largest diameter must be <= 200 px");
   if (!(contrast_grey > 0 && contrast_grey < 255)) throw ParameterError("contrast_grey", "must be in (0, 255)");
   if (background_window_px != 0 && background_window_px <= max_diameter_px)
-    throw ParameterError("background_window_px", std::to_string(background_window_px) +
+    throw ParameterError("background_window_px", number_text(background_window_px) +
                                                      " px must be wider than the largest dot (" +
-                                                     std::to_string(max_diameter_px) + " px), or 0 for automatic");
+                                                     number_text(max_diameter_px) + " px), or 0 for automatic");
   if (!(min_fill >= 0 && min_fill <= 1)) throw ParameterError("min_fill", "must be in [0, 1]");
   if (!(max_elongation >= 1)) throw ParameterError("max_elongation", "must be >= 1");
 }

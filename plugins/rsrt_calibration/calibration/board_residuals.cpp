@@ -1,4 +1,5 @@
 #include "calibration/board_residuals.hpp"
+#include "touchcloud/number_text.hpp"
 
 #include <cmath>
 
@@ -17,7 +18,7 @@ Eigen::Vector3d air_direction(const optics::StereoRig& rig, StereoSide side, con
                               int id, const std::string& what) {
   const auto& camera = rig.camera(side);
   const std::string where = what + ", corner " + std::to_string(id) + " (" + optics::to_string(side) + " pixel [" +
-                            std::to_string(pixel_px.x()) + ", " + std::to_string(pixel_px.y()) + "])";
+                            number_text(pixel_px.x()) + ", " + number_text(pixel_px.y()) + "])";
   if (!camera.in_view(pixel_px)) throw InputError(where + ": off the image");
   const auto ray = camera.back_project(pixel_px);
   if (ray.status != optics::TraceStatus::Ok)

@@ -1,4 +1,5 @@
 #include "touchcloud/config/yaml_fields.hpp"
+#include "touchcloud/number_text.hpp"
 #include "touchcloud/parameters.hpp"
 
 #include <cmath>
@@ -21,11 +22,16 @@ void ConfigProblems::throw_if_any() const {
 
 namespace {
 
-// Numbers in messages read as they do in parameter errors.
-std::string show(double v) { return format_value(ParamValue(v)); }
+// Numbers in messages: the shortest text that reads back the same.
+std::string show(double v) { return number_text(v); }
+
+constexpr double kMaxMagnitude = 1e6;
 
 std::optional<std::string> breaks(double v, FieldRule rule) {
   if (!std::isfinite(v)) return "must be a finite number";
+  // No length, angle, pixel count or rate of a sensor or scene comes near
+  // this; larger values overflow later, far from where they were given.
+  if (std::abs(v) > kMaxMagnitude) return "is out of range (at most " + show(kMaxMagnitude) + " in magnitude)";
   switch (rule) {
     case FieldRule::Any: return std::nullopt;
     case FieldRule::Positive: return v > 0 ? std::nullopt : std::optional<std::string>("must be > 0");
@@ -98,7 +104,7 @@ int ConfigFields::integer(const std::string& key, int fallback, int min_value) {
     return fallback;
   }
   if (v < min_value || v > 1'000'000'000) {
-    error(key, std::to_string(v) + " must be >= " + std::to_string(min_value));
+    error(key, std::to_string(v) + " must be in [" + std::to_string(min_value) + ", 1000000000]");
     return fallback;
   }
   return static_cast<int>(v);

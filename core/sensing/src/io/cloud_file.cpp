@@ -9,6 +9,7 @@
 #include <pcl/conversions.h>
 #include <pcl/io/ply_io.h>
 
+#include "io/cloud_file_checks.hpp"
 #include "touchcloud/error.hpp"
 
 namespace fs = std::filesystem;
@@ -22,6 +23,7 @@ namespace {
 // none (a crash), and fromPCLPointCloud2 indexes an empty data vector for an
 // empty cloud (undefined behaviour, caught by UBSan).
 void check_pcd_header(const fs::path& file) {
+  cloud_checks::check_pcd_file(file);
   pcl::PCLPointCloud2 header;
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
@@ -56,11 +58,18 @@ CloudFile read_cloud_file(const fs::path& file, NonFinitePoints nonfinite) {
   if (fs::file_size(file, ec) == 0) throw InputError(file.string() + " is empty (0 bytes)");
   pcl::PCLPointCloud2 blob;
   int status = 0;
-  if (ext == ".pcd") {
-    check_pcd_header(file);
-    status = pcl::io::loadPCDFile(file.string(), blob);
-  } else {
-    status = pcl::io::loadPLYFile(file.string(), blob);
+  try {
+    if (ext == ".pcd") {
+      check_pcd_header(file);
+      status = pcl::io::loadPCDFile(file.string(), blob);
+    } else {
+      cloud_checks::check_ply_counts(file);
+      status = pcl::io::loadPLYFile(file.string(), blob);
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {  // PCL throws on some malformed headers (std::out_of_range; found by fuzz/)
+    throw InputError(file.string() + " is not a readable " + ext.substr(1) + " point cloud (" + e.what() + ")");
   }
   if (status < 0)
     throw InputError(file.string() + " is not a readable " + ext.substr(1) + " point cloud (corrupt or truncated)");

@@ -1,4 +1,5 @@
 #include "touchcloud/scoring/cloud_metrics.hpp"
+#include "touchcloud/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -111,7 +112,7 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
   if (estimate.empty()) throw InputError("the estimate has no points");
   if (!(options.fscore_threshold_mm > 0) || !std::isfinite(options.fscore_threshold_mm))
     throw InputError("the F-score threshold must be a positive number of mm, not " +
-                     std::to_string(options.fscore_threshold_mm));
+                     number_text(options.fscore_threshold_mm));
   if (!options.metrics.any()) throw InputError("no metric selected");
 
   CloudScore s;

@@ -1,4 +1,5 @@
 #include "touchcloud/sensor/checkerboard.hpp"
+#include "touchcloud/number_text.hpp"
 
 #include <cmath>
 #include <string>
@@ -11,7 +12,7 @@ void Checkerboard::validate() const {
   if (cols < 2 || rows < 2)
     throw InputError("board: needs at least 2 x 2 inner corners, got [" + std::to_string(cols) + ", " +
                      std::to_string(rows) + "] ([cols, rows])");
-  if (!(square_mm > 0)) throw InputError("board: square_mm must be > 0, got " + std::to_string(square_mm));
+  if (!(square_mm > 0)) throw InputError("board: square_mm must be > 0, got " + number_text(square_mm));
 }
 
 Checkerboard Checkerboard::from_parameters(const std::array<int, 2>& board_corners, double square_mm) {

@@ -1,4 +1,6 @@
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/number_text.hpp"
+#include "touchcloud/file_write.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -17,6 +19,8 @@ using config::ConfigProblems;
 using config::FieldRule;
 
 namespace {
+
+constexpr double kMaxFps = 1000;  // frames per second a scene may ask for
 
 Eigen::Matrix3d housing_from_plate(const PlateSpec& plate) {
   return config::rpy_rotation(plate.tilt_deg[0], plate.tilt_deg[1], 0.0);
@@ -87,7 +91,7 @@ void read_markers(ConfigFields& m, const GelSpec& gel, MarkerSpec& markers) {
   markers.diameter_mm = m.number("diameter_mm", markers.diameter_mm, FieldRule::Positive);
   markers.seed = m.seed("seed", markers.seed);
   if (markers.mean_spacing_mm < markers.min_spacing_mm)
-    m.error("mean_spacing_mm", "must be >= min_spacing_mm (" + std::to_string(markers.min_spacing_mm) + ")");
+    m.error("mean_spacing_mm", "must be >= min_spacing_mm (" + number_text(markers.min_spacing_mm) + ")");
   if (markers.diameter_mm >= markers.min_spacing_mm) m.error("diameter_mm", "must be < min_spacing_mm: dots would touch");
   if (markers.min_spacing_mm > 0.5 * gel.diameter_mm) m.error("min_spacing_mm", "must be well below the gel's diameter");
 }
@@ -174,6 +178,13 @@ void read_gelstereo_sensor(ConfigFields& f, ConfigProblems& problems, GelStereoS
     read_cameras(*cameras, sensor, problems);
   }
   sensor.fps = f.number("fps", sensor.fps, FieldRule::Positive);
+  // Frames are simulated one by one: more than a high-speed camera gives
+  // would take forever (or, near the largest double, move the robot by 0).
+  if (sensor.fps > kMaxFps) {
+    f.error("fps", number_text(sensor.fps) + " frames per second is more than a camera gives (at most " +
+                       number_text(kMaxFps) + ")");
+    sensor.fps = kMaxFps;
+  }
 }
 
 GelStereoSensor load_gelstereo_sensor(const fs::path& file) {
@@ -278,15 +289,17 @@ void write_gelstereo_sensor(const GelStereoSensor& sensor, const fs::path& file,
 
   fs::path temporary = file;
   temporary += ".partial";
-  {
-    std::ofstream f(temporary);
-    if (!f) throw InputError("cannot write sensor file " + temporary.string());
-    std::istringstream lines(comment);
-    for (std::string line; std::getline(lines, line);) f << "# " << line << "\n";
-    f << out.c_str() << "\n";
-    if (!f) throw InputError("cannot write sensor file " + temporary.string());
-  }
+  std::ostringstream text;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) text << "# " << line << "\n";
+  text << out.c_str() << "\n";
   std::error_code ec;
+  try {
+    write_file(temporary, text.str());  // checks every write and the close
+  } catch (...) {
+    fs::remove(temporary, ec);
+    throw;
+  }
   fs::rename(temporary, file, ec);
   if (ec) throw InputError("cannot write sensor file " + file.string() + ": " + ec.message());
 }

@@ -19,4 +19,9 @@ struct CloudFile {
 // format, corrupt, empty, or (with Refuse) holds non-finite points.
 CloudFile read_cloud_file(const std::filesystem::path& file, NonFinitePoints nonfinite = NonFinitePoints::Refuse);
 
+// Writes `cloud` as .pcd or .ply (by the extension), then reads the file
+// back: PCL's writers do not check every write, so a full disk would leave a
+// short file behind a success. RunError naming the file on any failure.
+void write_cloud_file(const std::filesystem::path& file, const PointCloud& cloud, bool binary);
+
 }  // namespace touchcloud

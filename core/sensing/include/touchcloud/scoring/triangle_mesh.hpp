@@ -16,10 +16,11 @@ struct TriangleMesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;  // vertex indices
 };
 
-// Reads an STL, OBJ or PLY mesh (through PCL's loadPolygonFile); polygons with
-// more than three corners are split into a fan of triangles. Throws InputError
-// naming the file when it is missing, unreadable, holds no triangles, has
-// non-finite vertices or indices past the vertex list.
+// Reads an STL, OBJ or PLY mesh with readers of our own that bound what
+// they allocate by the file's size; polygons with more than three corners
+// are split into a fan of triangles. Throws InputError naming the file when
+// it is missing, unreadable, corrupt, holds no triangles, has non-finite
+// vertices or indices past the vertex list.
 TriangleMesh read_triangle_mesh(const std::filesystem::path& file);
 
 // True for .stl and .obj files, and for .ply files that declare faces.

@@ -1,0 +1,135 @@
+#include "io/cloud_file_checks.hpp"
+
+#include <charconv>
+#include <cstring>
+#include <algorithm>
+#include <cstdint>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "io/ply_header.hpp"
+#include "touchcloud/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud::cloud_checks {
+
+namespace {
+
+bool is_number(std::string_view word) {
+  double v = 0;
+  const auto r = std::from_chars(word.data(), word.data() + word.size(), v);
+  return r.ec == std::errc() && r.ptr == word.data() + word.size();
+}
+
+void check_ascii_body(const fs::path& file, std::string_view body, std::size_t first_line, std::uint64_t points,
+                      std::size_t values_per_point) {
+  std::uint64_t rows = 0;
+  std::size_t line_number = first_line, at = 0;
+  while (at < body.size()) {
+    std::size_t end = body.find('\n', at);
+    if (end == std::string_view::npos) end = body.size();
+    const std::string_view line = body.substr(at, end - at);
+    std::size_t values = 0, i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+      if (i == start) break;
+      const std::string_view word = line.substr(start, i - start);
+      if (!is_number(word))
+        throw InputError(file.string() + ":" + std::to_string(line_number) + ": '" +
+                         std::string(word.substr(0, 40)) + "' is not a number (point " + std::to_string(rows) + ")");
+      ++values;
+    }
+    if (values > 0) {
+      if (values != values_per_point)
+        throw InputError(file.string() + ":" + std::to_string(line_number) + ": point " + std::to_string(rows) +
+                         " has " + std::to_string(values) + " values, the header's fields need " +
+                         std::to_string(values_per_point));
+      ++rows;
+    }
+    at = end + 1;
+    ++line_number;
+  }
+  if (rows != points)
+    throw InputError(file.string() + " is not a readable pcd point cloud: its header declares " + std::to_string(points) + " points but the file holds " +
+                     std::to_string(rows));
+}
+
+// `e`'s message, said of a file that is not a readable `kind` cloud.
+[[noreturn]] void rethrow_as_unreadable(const fs::path& file, const std::string& kind, const InputError& e) {
+  std::string detail = e.what();
+  if (detail.rfind(file.string(), 0) == 0) detail = detail.substr(file.string().size());
+  if (detail.rfind(": ", 0) == 0) detail = detail.substr(2);
+  else if (detail.rfind(":", 0) == 0) detail = "line " + detail.substr(1);
+  throw InputError(file.string() + " is not a readable " + kind + " point cloud (" + detail + ")");
+}
+
+}  // namespace
+
+void check_pcd_file(const fs::path& file) {
+  const std::string bytes = ply::read_whole_file(file);
+  // The header, as far as the counts go; a malformed one is left to PCL,
+  // which refuses it.
+  std::uint64_t width = 0, height = 1, declared = 0, step = 0, values = 0;
+  std::vector<std::uint64_t> sizes, counts;
+  std::string data;
+  std::size_t at = 0, line_number = 0;
+  while (at < bytes.size() && data.empty()) {
+    std::size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) end = bytes.size();
+    std::istringstream words(bytes.substr(at, end - at));
+    at = end + 1;
+    ++line_number;
+    std::string key;
+    if (!(words >> key) || key[0] == '#') continue;
+    std::uint64_t n = 0;
+    if (key == "WIDTH") words >> width;
+    else if (key == "HEIGHT") words >> height;
+    else if (key == "POINTS") words >> declared;
+    else if (key == "SIZE") while (words >> n) sizes.push_back(n);
+    else if (key == "COUNT") while (words >> n) counts.push_back(n);
+    else if (key == "DATA") words >> data;
+  }
+  if (data.empty() || sizes.empty()) return;
+  if (counts.empty()) counts.assign(sizes.size(), 1);
+  for (std::size_t k = 0; k < sizes.size() && k < counts.size(); ++k) {
+    if (sizes[k] > 8 || counts[k] > (1u << 20)) return;  // PCL refuses these
+    step += sizes[k] * counts[k];
+    values += counts[k];
+  }
+  const std::uint64_t points = std::max(declared, height != 0 && width > UINT64_MAX / height ? UINT64_MAX : width * height);
+  const std::uint64_t available = bytes.size() - std::min(at, bytes.size());
+  const auto too_many = [&](const std::string& how) {
+    throw InputError(file.string() + " is not a readable pcd point cloud: its header declares " + std::to_string(points) +
+                     " points, more than " + how + " (corrupt or truncated)");
+  };
+  if (data == "ascii") {
+    if (values == 0) return;
+    if (points > 0 && points > (available + 1) / (2 * values))
+      too_many("its " + std::to_string(available) + " data bytes can hold");
+    check_ascii_body(file, std::string_view(bytes).substr(std::min(at, bytes.size())), line_number + 1, points, values);
+  } else if (data == "binary") {
+    if (step == 0 || points > available / step) too_many("its " + std::to_string(available) + " data bytes hold");
+  } else if (data == "binary_compressed") {
+    // Two sizes, then LZF data, which expands at most ~90x.
+    std::uint32_t compressed[2] = {0, 0};
+    if (available < 8) throw InputError(file.string() + " is not a readable pcd point cloud: its compressed data is truncated");
+    std::memcpy(compressed, bytes.data() + at, 8);
+    if (compressed[0] > available - 8)
+      throw InputError(file.string() + " is not a readable pcd point cloud: its compressed data is truncated");
+    if (step == 0 || points > (100ull * compressed[0] + 1024) / step) too_many("its compressed data can hold");
+  }
+}
+
+void check_ply_counts(const fs::path& file) {
+  try {
+    ply::parse_header(ply::read_whole_file(file), file);
+  } catch (const InputError& e) {
+    rethrow_as_unreadable(file, "ply", e);
+  }
+}
+
+}  // namespace touchcloud::cloud_checks

@@ -1,0 +1,17 @@
+#include "output_name.hpp"
+
+#include <filesystem>
+
+namespace touchcloud {
+
+std::optional<std::string> output_name_problem(const std::string& file_name) {
+  const std::filesystem::path rel(file_name);
+  const std::filesystem::path normal = rel.lexically_normal();
+  const bool escapes = rel.is_absolute() || rel.has_root_path() || (!normal.empty() && *normal.begin() == "..");
+  if (escapes) return "output file '" + file_name + "' must stay inside the output folder";
+  if (file_name.empty() || normal == "." || normal.filename().empty())
+    return "output file '" + file_name + "' names no file";
+  return std::nullopt;
+}
+
+}  // namespace touchcloud

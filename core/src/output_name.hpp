@@ -1,0 +1,14 @@
+// The rule for a file name a stage writes, relative to the output folder.
+// Private to the core.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace touchcloud {
+
+// Why `file_name` would leave the output folder (absolute, or a first
+// component '..' after normalising), or nullopt. "..hidden.ply" stays.
+std::optional<std::string> output_name_problem(const std::string& file_name);
+
+}  // namespace touchcloud

@@ -1,0 +1,146 @@
+#include "output_staging.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+
+#include "interrupt_cleanup.hpp"
+#include "touchcloud/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud {
+
+namespace {
+
+const std::string kStagingPrefix = ".touchcloud-staging-";
+
+// The pid in a staging folder's name, or 0.
+pid_t staging_pid(const std::string& name) {
+  if (name.rfind(kStagingPrefix, 0) != 0) return 0;
+  const char* first = name.data() + kStagingPrefix.size();
+  const char* last = name.data() + name.size();
+  pid_t pid = 0;
+  const auto r = std::from_chars(first, last, pid);
+  return r.ec == std::errc() && r.ptr == last && pid > 0 ? pid : 0;
+}
+
+}  // namespace
+
+OutputStaging::OutputStaging(const fs::path& out_dir) : out_(out_dir) {
+  if (out_.empty()) return;
+  std::error_code ec;
+  created_out_ = !fs::exists(out_, ec);
+  fs::create_directories(out_, ec);
+  if (ec) throw InputError("cannot create the output folder " + out_.string() + ": " + ec.message());
+  // The lock is on the folder itself, so nothing extra is left in it; the
+  // kernel drops it when the process ends, however it ends.
+  lock_fd_ = ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock_fd_ < 0)
+    throw InputError("cannot open the output folder " + out_.string() + ": " + std::strerror(errno));
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    if (err == EWOULDBLOCK)
+      throw InputError("the output folder " + out_.string() +
+                       " is in use by another touchcloud run; wait for it to end or choose another --out");
+    throw InputError("cannot lock the output folder " + out_.string() + ": " + std::strerror(err));
+  }
+  remove_stale_staging();
+  staging_ = out_ / (kStagingPrefix + std::to_string(::getpid()));
+  fs::remove_all(staging_, ec);
+  interrupt::remove_on_interrupt(staging_);
+  fs::create_directories(staging_, ec);
+  if (ec) throw InputError("cannot write in the output folder " + out_.string() + ": " + ec.message());
+}
+
+OutputStaging::~OutputStaging() {
+  std::error_code ec;
+  if (!staging_.empty()) {
+    fs::remove_all(staging_, ec);
+    interrupt::forget(staging_);
+  }
+  if (!committed_ && created_out_ && fs::is_empty(out_, ec)) fs::remove(out_, ec);
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+// A staging folder whose process is gone (killed, or the machine stopped)
+// is left over; its files were never outputs.
+void OutputStaging::remove_stale_staging() const {
+  std::error_code ec;
+  for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t pid = staging_pid(it->path().filename().string());
+    if (pid == 0 || pid == ::getpid()) continue;
+    if (::kill(pid, 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
+  }
+}
+
+void OutputStaging::commit(const std::vector<std::string>& files) {
+  const auto lock = interrupt::hold_off();
+  const fs::path backup = staging_ / ".replaced";
+  struct Move {
+    fs::path target;
+    bool replaced = false;
+    std::string name;
+  };
+  std::vector<Move> done;
+  std::vector<fs::path> created_dirs;
+  const auto roll_back = [&] {
+    std::error_code ec;
+    for (auto it = done.rbegin(); it != done.rend(); ++it) {
+      fs::rename(it->target, staging_ / it->name, ec);
+      if (it->replaced) fs::rename(backup / it->name, it->target, ec);
+    }
+    for (auto it = created_dirs.rbegin(); it != created_dirs.rend(); ++it) fs::remove(*it, ec);
+  };
+  const auto fail = [&](const std::string& name, const std::string& why) {
+    roll_back();
+    throw RunError("cannot move " + name + " into " + out_.string() + ": " + why +
+                   "; no output was moved into place");
+  };
+  // First everything that can be checked without moving anything.
+  for (const auto& f : files) {
+    const fs::path target = out_ / f;
+    std::error_code ec;
+    if (fs::is_directory(fs::symlink_status(target, ec)))
+      fail(f, target.string() + " is a folder");
+    for (fs::path dir = target.parent_path(); dir != out_ && !dir.empty(); dir = dir.parent_path())
+      if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
+        fail(f, dir.string() + " is not a folder");
+  }
+  for (const auto& f : files) {
+    const fs::path target = out_ / f;
+    std::error_code ec;
+    std::vector<fs::path> missing;
+    for (fs::path dir = target.parent_path(); dir != out_ && !fs::exists(dir, ec); dir = dir.parent_path())
+      missing.push_back(dir);
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+      if (!fs::create_directory(*it, ec) && ec) fail(f, "cannot create " + it->string() + ": " + ec.message());
+      created_dirs.push_back(*it);
+    }
+    Move move{target, fs::exists(fs::symlink_status(target, ec)), f};
+    if (move.replaced) {
+      fs::create_directories((backup / f).parent_path(), ec);
+      fs::rename(target, backup / f, ec);
+      if (ec) fail(f, "cannot set aside the existing " + target.string() + ": " + ec.message());
+    }
+    fs::rename(staging_ / f, target, ec);
+    if (ec) {
+      if (move.replaced) fs::rename(backup / f, target, ec);
+      fail(f, ec.message());
+    }
+    done.push_back(move);
+  }
+  committed_ = true;
+}
+
+}  // namespace touchcloud

@@ -1,0 +1,49 @@
+// Every input the fuzzers (fuzz/) found crashing a reader, read again: no
+// crash, and a clear InputError for the corrupt ones. They also seed the fuzzers.
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+#include "touchcloud/error.hpp"
+#include "touchcloud/io/cloud_file.hpp"
+#include "touchcloud/scoring/triangle_mesh.hpp"
+
+using namespace touchcloud;
+namespace fs = std::filesystem;
+
+namespace {
+const fs::path kCorpus = test::source_dir() / "fuzz/corpus";
+
+template <class F>
+std::string input_error(const fs::path& file, F&& read) {
+  try {
+    read(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(read without error)";
+}
+}  // namespace
+
+// PCL's PCD header parser threw std::out_of_range (std::terminate in the CLI's stages).
+TEST(FuzzRegressions, PcdHeaderThatThrowsOutOfRange) {
+  const fs::path file = kCorpus / "fuzz_pcd/crash-out-of-range-header.pcd";
+  const std::string msg = input_error(file, [](const fs::path& f) { read_cloud_file(f); });
+  EXPECT_NE(msg.find(file.string() + " is not a readable pcd point cloud"), std::string::npos) << msg;
+}
+
+// VTK's ASCII STL reader took more than 2 GB on this 122-byte file.
+TEST(FuzzRegressions, AsciiStlThatExhaustedMemory) {
+  const fs::path file = kCorpus / "fuzz_stl/oom-ascii.stl";
+  const std::string msg = input_error(file, [](const fs::path& f) { scoring::read_triangle_mesh(f); });
+  EXPECT_NE(msg.find(file.string() + " is not a readable stl mesh"), std::string::npos) << msg;
+}
+
+// PCL's vtk2mesh overflowed a heap buffer on this file; its line 'f1 1 //2//1
+// 3//1' is no face ('f1' is an unknown statement, ignored as OBJ readers
+// do), so the mesh is the one triangle 'f 1 3 4'.
+TEST(FuzzRegressions, ObjThatOverflowedAHeapBuffer) {
+  const auto mesh = scoring::read_triangle_mesh(kCorpus / "fuzz_obj/crash-mixed-corners.obj");
+  EXPECT_EQ(mesh.vertices.size(), 4u);
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(mesh.triangles[0], (std::array<std::uint32_t, 3>{0, 2, 3}));
+}

@@ -21,7 +21,7 @@ Action* add_run_verb(CLI::App& app) {
   static Action action;
   auto* cmd = app.add_subcommand("run", "Run a pipeline; write its outputs and summary.json into the output folder");
   cmd->add_option("pipeline", o.pipeline, "pipeline YAML file")->required();
-  cmd->add_option("--set", o.sets, "override a parameter: STAGE.PARAM=VALUE (repeatable)");
+  cmd->add_option("--set", o.sets, kSetHelp);
   cmd->add_option("--seed", o.seed, "seed for every random draw; a seeded run reproduces bit for bit")
       ->check(seed_value())
       ->capture_default_str();

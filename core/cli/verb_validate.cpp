@@ -15,7 +15,7 @@ Action* add_validate_verb(CLI::App& app) {
   static Action action;
   auto* cmd = app.add_subcommand("validate", "Check a pipeline (plugins, parameters, wiring, input files) without running it");
   cmd->add_option("pipeline", o.pipeline, "pipeline YAML file")->required();
-  cmd->add_option("--set", o.sets, "override a parameter: STAGE.PARAM=VALUE (repeatable)");
+  cmd->add_option("--set", o.sets, kSetHelp);
   cmd->callback([] {
     action = [] {
       std::vector<Override> overrides;

@@ -16,6 +16,11 @@ Action* add_plugins_verb(CLI::App& app);
 Action* add_score_verb(CLI::App& app);
 Action* add_sweep_verb(CLI::App& app);
 
+// Help of --set, shared by run and validate: where relative paths start.
+inline constexpr const char* kSetHelp =
+    "override a parameter: STAGE.PARAM=VALUE (repeatable). A relative file path given here is relative to "
+    "the current directory; one in the pipeline file, to that file's folder";
+
 // Exit statuses of the CLI contract.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRunFailed = 1;

@@ -14,4 +14,11 @@ std::optional<std::string> output_name_problem(const std::string& file_name) {
   return std::nullopt;
 }
 
+std::string with_pipeline_name(std::string file_name, const std::string& pipeline_name) {
+  const std::string field = kPipelineField;
+  for (auto at = file_name.find(field); at != std::string::npos; at = file_name.find(field, at + pipeline_name.size()))
+    file_name.replace(at, field.size(), pipeline_name);
+  return file_name;
+}
+
 }  // namespace touchcloud

@@ -11,4 +11,10 @@ namespace touchcloud {
 // component '..' after normalising), or nullopt. "..hidden.ply" stays.
 std::optional<std::string> output_name_problem(const std::string& file_name);
 
+// The placeholder the runtime replaces by the pipeline's name in output file
+// parameters, when it loads the pipeline.
+inline constexpr const char* kPipelineField = "{pipeline}";
+// `file_name` with each "{pipeline}" replaced by the pipeline's name.
+std::string with_pipeline_name(std::string file_name, const std::string& pipeline_name);
+
 }  // namespace touchcloud

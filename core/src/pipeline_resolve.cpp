@@ -10,6 +10,7 @@
 
 #include "nearest_name.hpp"
 #include "output_name.hpp"
+#include "touchcloud/path_text.hpp"
 #include "touchcloud/run_context.hpp"
 #include "pipeline_model.hpp"
 
@@ -182,6 +183,9 @@ class Resolver {
       }
       if (spec->path_role == PathRole::InputFile && !resolve_input_file(*spec, *value, p, who)) continue;
       if (spec->path_role == PathRole::OutputFile) {
+        // "{pipeline}" names outputs after the pipeline, so a copy of a
+        // shipped pipeline renamed for another object names its files anew.
+        *value = with_pipeline_name(std::get<std::string>(*value), doc_.name);
         // `validate` refuses what `run` would: a file outside the output folder.
         if (auto why = output_name_problem(std::get<std::string>(*value))) {
           error(p.where, who + ", parameter '" + p.name + "': " + *why);
@@ -207,8 +211,17 @@ class Resolver {
   // Relative input files are relative to the pipeline file's folder (to the
   // working directory for --set); they must exist and be readable, except a
   // per-iteration pattern ("frame_{iteration}.png"), whose folder must exist.
+  // Where a relative path was taken from, for "does not exist" messages.
+  std::string relative_to(const fs::path& given, const ParamDoc& p) const {
+    if (!given.is_relative()) return "";
+    return p.from_command_line ? " (--set paths are relative to the current directory)"
+                               : " (paths in a pipeline are relative to its file's folder, " +
+                                     absolute_text(doc_.file.parent_path()) + ")";
+  }
+
   bool resolve_input_file(const ParamSpec& spec, ParamValue& value, const ParamDoc& p, const std::string& who) {
-    fs::path path = std::get<std::string>(value);
+    const fs::path given = std::get<std::string>(value);
+    fs::path path = given;
     if (path.is_relative() && !p.from_command_line) path = doc_.file.parent_path() / path;
     path = path.lexically_normal();
     std::error_code ec;
@@ -216,15 +229,16 @@ class Resolver {
       // One file per loop iteration: the stage reads them as the loop runs;
       // here only the folder can be checked.
       if (!fs::is_directory(path.parent_path(), ec)) {
-        error(p.where, who + ", parameter '" + spec.name + "': folder " + path.parent_path().string() +
-                           " does not exist");
+        error(p.where, who + ", parameter '" + spec.name + "': folder " + absolute_text(path.parent_path()) +
+                           " does not exist" + relative_to(given, p));
         return false;
       }
       value = path.string();
       return true;
     }
     if (!fs::exists(path, ec)) {
-      error(p.where, who + ", parameter '" + spec.name + "': input file " + path.string() + " does not exist");
+      error(p.where, who + ", parameter '" + spec.name + "': input file " + absolute_text(path) + " does not exist" +
+                         relative_to(given, p));
       return false;
     }
     if (fs::is_directory(path, ec)) {

@@ -1,4 +1,5 @@
 #include "yaml_document_checks.hpp"
+#include "touchcloud/path_text.hpp"
 
 #include <cstdio>
 #include <set>
@@ -46,7 +47,7 @@ void walk(const YAML::Node& node, const fs::path& file, std::vector<Diagnostic>&
 std::optional<std::string> not_a_regular_file(const fs::path& file) {
   std::error_code ec;
   const fs::file_status status = fs::status(file, ec);
-  if (ec || !fs::exists(status)) return file.string() + " does not exist";
+  if (ec || !fs::exists(status)) return absolute_text(file) + " does not exist";
   if (fs::is_directory(status)) return file.string() + " is a folder, not a file";
   if (!fs::is_regular_file(status)) return file.string() + " is not a regular file (a FIFO, socket or device)";
   return std::nullopt;

@@ -15,7 +15,8 @@
 namespace touchcloud {
 
 class Chamfer final : public Stage {
-  std::string ground_truth_, metrics_;
+  std::optional<std::string> scene_, ground_truth_;
+  std::string metrics_;
   std::optional<std::int64_t> samples_;
   std::int64_t sample_seed_ = 0;
   double fscore_threshold_mm_ = scoring::kDefaultFscoreThresholdMm;
@@ -24,9 +25,18 @@ class Chamfer final : public Stage {
   scoring::ScoreOptions options_;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("ground_truth", ground_truth_, std::string())
+    p.add("scene", scene_)
         .input_file()
-        .doc("mesh (.stl, .obj, .ply with faces; sampled uniformly by area) or cloud (.pcd, .ply), mm");
+        .doc("scene file whose object (mesh, scale and pose, as the simulator places it) is the ground truth");
+    p.add("ground_truth", ground_truth_)
+        .input_file()
+        .doc("instead of a scene: mesh (.stl, .obj, .ply with faces; sampled uniformly by area) or cloud "
+             "(.pcd, .ply), mm, in the estimate's frame");
+    p.rule({"scene", "ground_truth"}, [this]() -> std::optional<std::string> {
+      if (scene_.has_value() == ground_truth_.has_value())
+        return std::string("give exactly one: scene (its object is the ground truth) or ground_truth (a file)");
+      return std::nullopt;
+    });
     p.add("samples", samples_)
         .at_least(1)
         .unit("points")
@@ -64,10 +74,12 @@ class Chamfer final : public Stage {
       throw ParameterError("metrics", e.what());
     }
     options_.fscore_threshold_mm = fscore_threshold_mm_;
+    const char* source = scene_ ? "scene" : "ground_truth";
     try {
-      file_.emplace(scoring::read_ground_truth(ground_truth_, ground_truth_options()));
+      file_.emplace(scene_ ? scoring::read_scene_ground_truth(*scene_)
+                           : scoring::read_ground_truth(*ground_truth_, ground_truth_options()));
     } catch (const InputError& e) {
-      throw ParameterError("ground_truth", e.what());
+      throw ParameterError(source, e.what());
     }
   }
 
@@ -77,13 +89,14 @@ class Chamfer final : public Stage {
     try {
       gt_.emplace(scoring::index_ground_truth(std::move(*file_), ground_truth_options()));
     } catch (const InputError& e) {
-      throw ParameterError("ground_truth", e.what());
+      throw ParameterError(scene_ ? "scene" : "ground_truth", e.what());
     }
     file_.reset();
     if (!samples_ && gt_->kind == scoring::GroundTruthKind::Mesh)
       ctx.used("samples", static_cast<std::int64_t>(gt_->points.size()));
     std::ostringstream what;
-    what << gt_->points.size() << " ground-truth points from " << ground_truth_;
+    what << gt_->points.size() << " ground-truth points from " << gt_->file.string();
+    if (scene_) what << " (the object of " << *scene_ << ")";
     if (gt_->kind == scoring::GroundTruthKind::Mesh)
       what << " (mesh of " << std::fixed << std::setprecision(1) << gt_->area_mm2 << " mm^2, sampled "
            << std::setprecision(3) << gt_->sample_spacing_mm() << " mm apart on average)";

@@ -12,7 +12,8 @@ class CloudWriter final : public Stage {
   void declare_parameters(ParameterSet& p) override {
     p.add("path", path_, std::string("cloud.pcd"))
         .output_file()
-        .doc("file in the output folder, .pcd or .ply; '{iteration}' becomes the loop iteration");
+        .doc("file in the output folder, .pcd or .ply; '{iteration}' becomes the loop iteration, '{pipeline}' the "
+             "pipeline's name");
     p.add("binary", binary_, true).doc("binary encoding (false: ASCII, larger but readable)");
   }
   void declare_ports(PortSet& ports) override { ports.input<CloudConstPtr>("cloud", "points to write, mm"); }

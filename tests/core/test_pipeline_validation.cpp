@@ -171,6 +171,36 @@ TEST_F(PipelineValidation, LoopRules) {
                        "fed from the previous iteration"));
 }
 
+// A relative path in the pipeline is taken from the pipeline file's folder,
+// one given with --set from the current directory: a missing file's message
+// names the absolute path tried and which rule made it.
+TEST_F(PipelineValidation, AMissingRelativeFileNamesTheAbsolutePathTriedAndWhy) {
+  std::filesystem::create_directories(dir_ / "pipelines");
+  write("stages:\n  - id: r\n    plugin: cloud_reader\n    params: {path: ../data/a.pcd}\n", "pipelines/p.yaml");
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir_.path());
+  std::vector<Diagnostic> in_file, on_command_line;
+  try {
+    Pipeline::load("pipelines/p.yaml", {}, registry_);
+  } catch (const InputError& e) {
+    in_file = e.diagnostics();
+  }
+  try {
+    Pipeline::load("pipelines/p.yaml", {{"r.path", "b.pcd"}}, registry_);
+  } catch (const InputError& e) {
+    on_command_line = e.diagnostics();
+  }
+  std::filesystem::current_path(cwd);
+  const std::string root = std::filesystem::canonical(dir_.path()).string();
+  ASSERT_EQ(in_file.size(), 1u);
+  EXPECT_TRUE(mentions(in_file[0], "input file " + root + "/data/a.pcd does not exist")) << in_file[0].str();
+  EXPECT_TRUE(mentions(in_file[0], "relative to its file's folder, " + root + "/pipelines)")) << in_file[0].str();
+  ASSERT_EQ(on_command_line.size(), 1u);
+  EXPECT_TRUE(mentions(on_command_line[0], "input file " + root + "/b.pcd does not exist")) << on_command_line[0].str();
+  EXPECT_TRUE(mentions(on_command_line[0], "--set paths are relative to the current directory"))
+      << on_command_line[0].str();
+}
+
 TEST_F(PipelineValidation, OverridesAreCheckedLikeTheFile) {
   const std::string yaml = read_thin_write("{}");
   Pipeline p = load(yaml, {{"thin.leaf_size_mm", "3.5"}, {"thin.method", "random"}});

@@ -44,7 +44,7 @@ TEST(ActiveReconstruction, FoxMaskImprovesWithEveryFewTouches) {
   EXPECT_EQ(series(r, "sensor.touches")[0], 12);
   EXPECT_EQ(series(r, "sensor.frames_rendered")[0], 0) << "a point-level pipeline renders no image";
   EXPECT_GT(series(r, "dedup.total_points").back(), 300);
-  EXPECT_TRUE(fs::exists(dir / "out/fox_mask_surface.pcd"));
+  EXPECT_TRUE(fs::exists(dir / "out/fox_mask_active_surface.pcd"));
   EXPECT_TRUE(fs::exists(dir / "out/summary.json"));
 }
 
@@ -52,7 +52,7 @@ TEST(ActiveReconstruction, SeededRunsAreIdentical) {
   test::TempDir dir;
   run_active("wave_surface_active.yaml", 6, 3, dir / "a");
   run_active("wave_surface_active.yaml", 6, 3, dir / "b");
-  const std::string a = test::read_file(dir / "a/wave_surface_surface.pcd");
+  const std::string a = test::read_file(dir / "a/wave_surface_active_surface.pcd");
   ASSERT_FALSE(a.empty());
-  EXPECT_EQ(a, test::read_file(dir / "b/wave_surface_surface.pcd"));
+  EXPECT_EQ(a, test::read_file(dir / "b/wave_surface_active_surface.pcd"));
 }

@@ -57,18 +57,11 @@ class FlatTop final : public ObjectSurface {
 };
 
 std::unique_ptr<ObjectSurface> mesh_object(const ObjectSpec& object) {
-  const std::string field = "scene object.mesh (" + object.mesh.string() + "): ";
-  scoring::TriangleMesh mesh;
-  try {
-    mesh = scoring::read_triangle_mesh(object.mesh);
-  } catch (const InputError& e) {
-    throw InputError(field + e.what(), object.where);
-  }
-  for (auto& v : mesh.vertices) v = object.base_from_object * (object.scale * v);
+  const scoring::TriangleMesh mesh = read_placed_object_mesh(object);
   try {
     return std::make_unique<MeshSurface>(mesh);
   } catch (const InputError& e) {
-    throw InputError(field + e.what(), object.where);
+    throw InputError("scene object.mesh (" + object.mesh.string() + "): " + e.what(), object.where);
   }
 }
 

@@ -1,4 +1,5 @@
 #include "scene/scene.hpp"
+#include "touchcloud/path_text.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -14,44 +15,7 @@ using config::ConfigFields;
 using config::ConfigProblems;
 using config::FieldRule;
 
-const char* to_string(ObjectKind kind) {
-  switch (kind) {
-    case ObjectKind::Mesh: return "mesh";
-    case ObjectKind::FoxMask: return "fox_mask";
-    case ObjectKind::WaveSurface: return "wave_surface";
-    case ObjectKind::Plane: return "plane";
-  }
-  return "?";
-}
-
-
 namespace {
-
-void read_object(ConfigFields& f, ObjectSpec& object, const fs::path& folder, ConfigProblems& problems) {
-  object.where = problems.where(f.node());
-  const bool has_mesh = f.has("mesh"), has_analytic = f.has("analytic");
-  if (has_mesh == has_analytic) f.error("mesh", "give exactly one of 'mesh' (a file) or 'analytic' (a surface name)");
-  if (has_mesh) {
-    object.kind = ObjectKind::Mesh;
-    const fs::path mesh = f.text("mesh", "");
-    object.mesh = (mesh.is_relative() ? folder / mesh : mesh).lexically_normal();
-  } else if (has_analytic) {
-    const std::string name = f.text("analytic", "plane");
-    if (name == "fox_mask") object.kind = ObjectKind::FoxMask;
-    else if (name == "wave_surface") object.kind = ObjectKind::WaveSurface;
-    else if (name == "plane") object.kind = ObjectKind::Plane;
-    else f.error("analytic", "unknown surface '" + name + "' (known: fox_mask, wave_surface, plane)");
-  }
-  object.scale = f.number("scale", 1.0, FieldRule::Positive);
-  if (object.kind == ObjectKind::Plane) object.plane_height_mm = f.number("height_mm", 10.0, FieldRule::Positive);
-  else if (f.has("height_mm")) f.error("height_mm", "only the analytic 'plane' has a height_mm");
-  if (auto pose = f.child("pose")) {
-    Eigen::Vector3d rpy;
-    object.base_from_object = config::read_pose(*pose, &rpy);
-    if (object.kind != ObjectKind::Mesh && (rpy[0] != 0 || rpy[1] != 0))
-      pose->error("rpy_deg", "an analytic surface can only turn about z (roll and pitch must be 0)");
-  }
-}
 
 void read_robot(ConfigFields& f, RobotSpec& robot) {
   robot.speed_mm_s = f.number("speed_mm_s", robot.speed_mm_s, FieldRule::Positive);
@@ -129,7 +93,7 @@ void read_effects(const YAML::Node& node, Scene& scene, ConfigProblems& problems
 
 Scene load_scene(const fs::path& file) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError("scene file " + file.string() + " does not exist or is not a file");
+  if (!fs::is_regular_file(file, ec)) throw InputError("scene file " + absolute_text(file) + " does not exist or is not a file");
   YAML::Node root;
   try {
     root = YAML::LoadFile(file.string());
@@ -147,7 +111,7 @@ Scene load_scene(const fs::path& file) {
     ConfigFields top(root, "", problems);
     scene.name = top.text("name", scene.name);
     top.text("description", "");
-    if (auto object = top.child("object")) read_object(*object, scene.object, file.parent_path(), problems);
+    if (auto object = top.child("object")) read_object_section(*object, scene.object, file.parent_path(), problems);
     if (auto workspace = top.child("workspace")) read_workspace_section(*workspace, scene.workspace);
     if (auto fields = top.child("sensor")) sensor::read_gelstereo_sensor(*fields, problems, scene.sensor);
     if (auto robot = top.child("robot")) read_robot(*robot, scene.robot);

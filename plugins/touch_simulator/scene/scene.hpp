@@ -11,24 +11,15 @@
 #include "scene/effects.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/types/scene_object.hpp"
 #include "touchcloud/types/workspace.hpp"
 
 namespace touchcloud::touch_simulator {
 
-enum class ObjectKind { Mesh, FoxMask, WaveSurface, Plane };
-const char* to_string(ObjectKind kind);
-
-// The object on the table. Its own frame has z up and z = 0 on the table;
-// `base_from_object` places it (translation, then yaw; analytic objects
-// may only turn about z). The simulator uses its upper surface.
-struct ObjectSpec {
-  ObjectKind kind = ObjectKind::Plane;
-  std::filesystem::path mesh;  // kind Mesh: resolved against the scene file's folder
-  double scale = 1.0;          // multiplies object coordinates before the pose
-  Eigen::Isometry3d base_from_object = Eigen::Isometry3d::Identity();
-  double plane_height_mm = 10.0;  // kind Plane: an unbounded flat top at this height
-  SourceLocation where;           // of `object`, for errors found later (an unreadable mesh)
-};
+// The object on the table: sensing's scene object, shared with the chamfer
+// stage's ground truth.
+using touchcloud::ObjectKind;
+using touchcloud::ObjectSpec;
 
 // Where touches may go, and the paper's grid of sampling positions over it.
 using Workspace = WorkspaceGrid;

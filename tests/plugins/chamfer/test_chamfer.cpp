@@ -121,3 +121,41 @@ TEST_F(Chamfer, BadParametersAreFoundBeforeTheRun) {
             std::string::npos);
   EXPECT_NE(first_error("{ground_truth: gt.pcd, samples: -5}").find("samples"), std::string::npos);
 }
+
+// The scene's object is the ground truth, scaled and posed as the simulator
+// places it: a 10 mm square at scale 5, lifted 7 mm, is the 50 mm square at
+// z = 7, so an estimate on that square scores ~0 where the mesh file as it
+// lies (at z = 0, 10 mm wide) would give ~7 mm and more.
+TEST_F(Chamfer, TheScenesObjectIsTheGroundTruthScaledAndPosed) {
+  test::write_file(dir_ / "square.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3 4\n");
+  test::write_file(dir_ / "scene.yaml",
+                   "object: {mesh: square.obj, scale: 5, pose: {xyz_mm: [0, 0, 7], rpy_deg: [0, 0, 0]}}\n");
+  test::save_pcd(dir_ / "est.pcd", cloud({{45, 45, 7}, {5, 40, 7}, {25, 25, 7}}));
+  const double placed =
+      series(run(pipeline("{scene: scene.yaml, samples: 40000, metrics: chamfer_est_to_gt}")), "score.chamfer_est_to_gt")
+          .values.at(0);
+  EXPECT_LT(placed, 0.2);
+  const double as_file =
+      series(run(pipeline("{ground_truth: square.obj, samples: 40000, metrics: chamfer_est_to_gt}")),
+             "score.chamfer_est_to_gt")
+          .values.at(0);
+  EXPECT_GT(as_file, 7.0);
+}
+
+TEST_F(Chamfer, SceneAndGroundTruthAreOneOrTheOther) {
+  test::write_file(dir_ / "square.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3 4\n");
+  test::write_file(dir_ / "scene.yaml", "object: {mesh: square.obj}\n");
+  test::write_file(dir_ / "analytic.yaml", "object: {analytic: fox_mask}\n");
+  test::write_file(dir_ / "no_object.yaml", "name: empty\n");
+  const auto first_error = [&](const std::string& params) {
+    const auto diags = errors(pipeline(params));
+    return diags.empty() ? std::string() : diags[0].message;
+  };
+  EXPECT_NE(first_error("{}").find("give exactly one"), std::string::npos);
+  EXPECT_NE(first_error("{scene: scene.yaml, ground_truth: gt.pcd}").find("give exactly one"), std::string::npos);
+  const std::string analytic = first_error("{scene: analytic.yaml}");
+  EXPECT_NE(analytic.find("analytic surface 'fox_mask'"), std::string::npos) << analytic;
+  const std::string none = first_error("{scene: no_object.yaml}");
+  EXPECT_NE(none.find("has no 'object:' section"), std::string::npos) << none;
+  EXPECT_NO_THROW(load(pipeline("{scene: scene.yaml}")));
+}

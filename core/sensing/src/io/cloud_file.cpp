@@ -1,4 +1,5 @@
 #include "touchcloud/io/cloud_file.hpp"
+#include "touchcloud/path_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +50,7 @@ CloudFile read_cloud_file(const fs::path& file, NonFinitePoints nonfinite) {
   static std::once_flag quiet_pcl;
   std::call_once(quiet_pcl, [] { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); });
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError(file.string() + " does not exist or is not a file");
+  if (!fs::is_regular_file(file, ec)) throw InputError(absolute_text(file) + " does not exist or is not a file");
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
 

@@ -1,4 +1,5 @@
 #include "io/ply_header.hpp"
+#include "touchcloud/path_text.hpp"
 
 #include <charconv>
 #include <fstream>
@@ -150,7 +151,7 @@ Header parse_header(std::string_view bytes, const fs::path& file) {
 
 std::string read_whole_file(const fs::path& file) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError(file.string() + " does not exist or is not a regular file");
+  if (!fs::is_regular_file(file, ec)) throw InputError(absolute_text(file) + " does not exist or is not a regular file");
   std::ifstream in(file, std::ios::binary);
   std::string bytes(fs::file_size(file, ec), '\0');
   if (ec || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))

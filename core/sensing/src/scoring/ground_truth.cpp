@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/types/scene_object.hpp"
 
 namespace touchcloud::scoring {
 
@@ -34,6 +35,22 @@ GroundTruthFile read_ground_truth(const std::filesystem::path& file, const Groun
   CloudFile cloud = read_cloud_file(file, options.nonfinite);
   out.cloud = to_points(*cloud.cloud);
   out.dropped_nonfinite = cloud.dropped_nonfinite;
+  return out;
+}
+
+GroundTruthFile read_scene_ground_truth(const std::filesystem::path& scene_file) {
+  const ObjectSpec object = load_scene_object(scene_file);
+  if (object.kind != ObjectKind::Mesh)
+    throw InputError("scene file " + scene_file.string() + ": its object is the analytic surface '" +
+                         to_string(object.kind) + "'; score it against a ground-truth file instead",
+                     object.where);
+  GroundTruthFile out;
+  out.file = object.mesh;
+  out.kind = GroundTruthKind::Mesh;
+  out.mesh = read_placed_object_mesh(object);
+  out.area_mm2 = surface_area_mm2(out.mesh);
+  if (!(out.area_mm2 > 0) || !std::isfinite(out.area_mm2))
+    throw InputError(object.mesh.string() + ": the mesh has no surface area to sample", object.where);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "scoring/ply_mesh_reader.hpp"
+#include "touchcloud/path_text.hpp"
 #include "scoring/stl_obj_mesh_readers.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
@@ -49,7 +50,7 @@ bool is_mesh_file(const fs::path& file) {
 TriangleMesh read_triangle_mesh(const fs::path& file) {
   const std::string name = file.string();
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError(name + " does not exist or is not a file");
+  if (!fs::is_regular_file(file, ec)) throw InputError(absolute_text(file) + " does not exist or is not a file");
   if (fs::file_size(file, ec) == 0) throw InputError(name + " is empty (0 bytes)");
   const std::string ext = lower_extension(file);
   if (ext != ".stl" && ext != ".obj" && ext != ".ply")

@@ -1,4 +1,5 @@
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/path_text.hpp"
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/file_write.hpp"
 
@@ -189,7 +190,7 @@ void read_gelstereo_sensor(ConfigFields& f, ConfigProblems& problems, GelStereoS
 
 GelStereoSensor load_gelstereo_sensor(const fs::path& file) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError("sensor file " + file.string() + " does not exist or is not a file");
+  if (!fs::is_regular_file(file, ec)) throw InputError("sensor file " + absolute_text(file) + " does not exist or is not a file");
   YAML::Node root;
   try {
     root = YAML::LoadFile(file.string());

@@ -60,6 +60,11 @@ struct GroundTruthFile {
 // .pcd and .ply without faces are clouds. Throws InputError naming the file,
 // also for a mesh with no surface area.
 GroundTruthFile read_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options = {});
+// The object of a scene file as ground truth: its mesh scaled and posed as
+// the simulator places it, so a simulated run cannot be scored against an
+// object it did not touch. InputError naming the scene when its object is an
+// analytic surface (give a ground-truth file for those) or the mesh is bad.
+GroundTruthFile read_scene_ground_truth(const std::filesystem::path& scene_file);
 // Samples a mesh (options.mesh_samples, seed) and indexes the points.
 GroundTruth index_ground_truth(GroundTruthFile file, const GroundTruthOptions& options = {});
 // Both of the above.

@@ -171,7 +171,7 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
   base->fit(s.xy.topRows(n0), s.z.head(n0));
   base->reserve(n0 + kTouches * kTouchPoints);
   const WorkspaceGrid grid = fox_mask_grid();
-  max_variance_cell(GpSurfaceModel(base), grid, 1);  // the previous touch's choice (fills the cache)
+  max_variance_cell(GpSurfaceModel(base, std::nullopt), grid, 1);  // the previous touch's choice (fills the cache)
   // The surface_sampler's 200 x 200 evaluation grid over the workspace.
   const Eigen::VectorXd grid_xs = Eigen::VectorXd::LinSpaced(200, grid.x_mm[0], grid.x_mm[1]);
   const Eigen::VectorXd grid_ys = Eigen::VectorXd::LinSpaced(200, grid.y_mm[0], grid.y_mm[1]);
@@ -193,7 +193,7 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
     const gp_surface::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
                                                      batch[static_cast<std::size_t>(touch)].z);
     paths += report.path == gp_surface::UpdatePath::bordered ? 1 : 0;
-    const VarianceChoice choice = max_variance_cell(GpSurfaceModel(next), grid, 1);
+    const VarianceChoice choice = max_variance_cell(GpSurfaceModel(next, std::nullopt), grid, 1);
     benchmark::DoNotOptimize(choice.cell);
     if (state.range(0) == 2) benchmark::DoNotOptimize(next->mean_on_grid(grid_xs, grid_ys).sum());
     current = next;

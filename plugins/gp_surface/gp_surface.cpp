@@ -138,6 +138,11 @@ class GpSurface final : public Stage {
     ctx.metric("selection_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), "s");
   }
 
+  std::optional<std::array<double, 2>> data_z_range() const {
+    if (z_.size() == 0) return std::nullopt;
+    return std::array<double, 2>{z_.minCoeff(), z_.maxCoeff()};
+  }
+
   void fit_exact(const gp_surface::Hyperparameters& h) {
     auto model = std::make_shared<gp_surface::ExactGp>(kernel_, h);
     model->fit(xy_, z_);
@@ -154,7 +159,7 @@ class GpSurface final : public Stage {
     model->fit(xy_, z_, inducing);
     ctx.metric("inducing_points", static_cast<double>(inducing.rows()), "points");
     ctx.metric("vfe_bound", model->log_marginal_likelihood_bound());
-    return std::make_shared<gp_surface::SparseSurfaceModel>(model);
+    return std::make_shared<gp_surface::SparseSurfaceModel>(model, data_z_range());
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -193,7 +198,7 @@ class GpSurface final : public Stage {
       ctx.metric("jitter_mm2", gp_->factorisation().jitter_mm2, "mm^2");
       // An unchanged fit goes out as the same model, which later stages may
       // recognise and not evaluate again.
-      if (!exact_surface_ || exact_surface_->gp() != gp_) exact_surface_ = std::make_shared<gp_surface::GpSurfaceModel>(gp_);
+      if (!exact_surface_ || exact_surface_->gp() != gp_) exact_surface_ = std::make_shared<gp_surface::GpSurfaceModel>(gp_, data_z_range());
       surface = exact_surface_;
     }
     ctx.metric("training_points", static_cast<double>(n), "points");

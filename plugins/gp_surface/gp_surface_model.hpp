@@ -11,18 +11,22 @@ namespace touchcloud::gp_surface {
 
 class GpSurfaceModel final : public SurfaceModel {
  public:
-  explicit GpSurfaceModel(std::shared_ptr<const gp_surface::ExactGp> gp) : gp_(std::move(gp)) {}
+  // `data_z_range_mm`: [min, max] of the training z (nothing with no data).
+  GpSurfaceModel(std::shared_ptr<const gp_surface::ExactGp> gp, std::optional<std::array<double, 2>> data_z_range_mm)
+      : gp_(std::move(gp)), data_z_range_mm_(data_z_range_mm) {}
   std::size_t training_size() const override { return static_cast<std::size_t>(gp_->size()); }
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return gp_->mean(xy); }
   Eigen::MatrixXd mean_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const override {
     return gp_->mean_on_grid(xs, ys);
   }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
+  std::optional<std::array<double, 2>> data_z_range_mm() const override { return data_z_range_mm_; }
   std::map<std::string, double> hyperparameters() const override;
   const std::shared_ptr<const gp_surface::ExactGp>& gp() const { return gp_; }
 
  private:
   std::shared_ptr<const gp_surface::ExactGp> gp_;
+  std::optional<std::array<double, 2>> data_z_range_mm_;
 };
 
 }  // namespace touchcloud::gp_surface

@@ -11,14 +11,18 @@ namespace touchcloud::gp_surface {
 
 class SparseSurfaceModel final : public SurfaceModel {
  public:
-  explicit SparseSurfaceModel(std::shared_ptr<const gp_surface::SparseVfeGp> gp) : gp_(std::move(gp)) {}
+  // `data_z_range_mm`: [min, max] of the training z (nothing with no data).
+  SparseSurfaceModel(std::shared_ptr<const gp_surface::SparseVfeGp> gp, std::optional<std::array<double, 2>> data_z_range_mm)
+      : gp_(std::move(gp)), data_z_range_mm_(data_z_range_mm) {}
   std::size_t training_size() const override { return static_cast<std::size_t>(gp_->size()); }
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return gp_->mean(xy); }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
+  std::optional<std::array<double, 2>> data_z_range_mm() const override { return data_z_range_mm_; }
   std::map<std::string, double> hyperparameters() const override;
 
  private:
   std::shared_ptr<const gp_surface::SparseVfeGp> gp_;
+  std::optional<std::array<double, 2>> data_z_range_mm_;
 };
 
 }  // namespace touchcloud::gp_surface

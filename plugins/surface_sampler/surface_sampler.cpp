@@ -1,6 +1,12 @@
 // surface_sampler: the fitted surface's mean on a regular lattice over the
 // workspace (the paper evaluates 200 x 200), as a cloud for scoring and
-// writing. Only the mean: the variance is not needed here and costs far more.
+// writing. Only the mean by default: the variance costs far more, and is
+// computed only when `max_sd_mm` asks to mask where the model is unsure.
+// Where the mean runs far outside the z range of the data it was fitted to
+// (an object the sensor could not reach everywhere), the points are masked
+// or the run fails, never passed on silently.
+#include <sstream>
+
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/surface_model.hpp"
@@ -8,15 +14,30 @@
 
 namespace touchcloud {
 
+enum class OutsideData { Mask, Error, Keep };
+
 class SurfaceSampler final : public Stage {
   WorkspaceParameters workspace_;
   std::array<int, 2> resolution_{};
   WorkspaceGrid area_;
+  double outside_margin_mm_ = 20.0;
+  OutsideData outside_ = OutsideData::Mask;
+  std::optional<double> max_sd_mm_;
+  long masked_total_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
     workspace_.declare(p, false);
     p.add("resolution", resolution_, std::array<int, 2>{200, 200}).range(2, 4000)
         .doc("lattice points along x and y, edges included");
+    p.add("outside_data_margin_mm", outside_margin_mm_, 20.0).unit("mm").above(0)
+        .doc("a mean further than this below the lowest or above the highest fitted point is extrapolation");
+    p.add("outside_data", outside_, OutsideData::Mask,
+          {{"mask", OutsideData::Mask}, {"error", OutsideData::Error}, {"keep", OutsideData::Keep}})
+        .doc("points whose mean is extrapolation: dropped with a warning (mask), fail the run (error), or kept "
+             "with a warning (keep)");
+    p.add("max_sd_mm", max_sd_mm_).unit("mm").above(0)
+        .doc("also drop points whose posterior standard deviation exceeds this (computes the variance on the "
+             "lattice, far slower than the mean); not set: no such mask");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<SurfaceModelPtr>("surface", "the fitted surface");
@@ -25,7 +46,7 @@ class SurfaceSampler final : public Stage {
   void on_check(RunContext&) override { area_ = workspace_.resolve(); }
   void on_configure(RunContext& ctx) override { workspace_.record_used(area_, ctx); }
 
-  void on_process(StageIO& io, RunContext&) override {
+  void on_process(StageIO& io, RunContext& ctx) override {
     const auto& surface = io.input<SurfaceModelPtr>("surface");
     if (!surface) throw RunError("no surface model");
     // The same model as last time (a touch that added no point): the same
@@ -39,18 +60,70 @@ class SurfaceSampler final : public Stage {
     const Eigen::VectorXd ys = Eigen::VectorXd::LinSpaced(ny, area_.y_mm[0], area_.y_mm[1]);
     const Eigen::MatrixXd z = surface->mean_on_lattice(xs, ys);
     if (z.rows() != nx || z.cols() != ny) throw RunError("the surface model returned a lattice of the wrong size");
+    const Eigen::MatrixXd sd = max_sd_mm_ ? lattice_sd(*surface, xs, ys) : Eigen::MatrixXd();
+    const auto range = surface->data_z_range_mm();
     auto cloud = std::make_shared<PointCloud>();
     cloud->reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+    long outside = 0, unsure = 0;
+    double worst = 0;  // furthest mean outside the data's range, mm
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        if (!std::isfinite(z(i, j)))
+        const double zij = z(i, j);
+        if (!std::isfinite(zij))
           throw RunError("the surface mean is not finite at (" + std::to_string(xs[i]) + ", " + std::to_string(ys[j]) + ") mm");
-        cloud->push_back(pcl::PointXYZ(static_cast<float>(xs[i]), static_cast<float>(ys[j]), static_cast<float>(z(i, j))));
+        if (range) {
+          const double beyond = std::max((*range)[0] - zij, zij - (*range)[1]);
+          if (beyond > outside_margin_mm_) {
+            ++outside;
+            worst = std::max(worst, beyond);
+            if (outside_ == OutsideData::Error) throw RunError(outside_message(xs[i], ys[j], zij, *range));
+            if (outside_ == OutsideData::Mask) continue;
+          }
+        }
+        if (max_sd_mm_ && sd(i, j) > *max_sd_mm_) {
+          ++unsure;
+          continue;
+        }
+        cloud->push_back(pcl::PointXYZ(static_cast<float>(xs[i]), static_cast<float>(ys[j]), static_cast<float>(zij)));
       }
+    report(outside, unsure, worst, ctx);
     last_surface_ = surface;
     last_cloud_ = cloud;
     io.output("cloud", last_cloud_);
   }
+  static Eigen::MatrixXd lattice_sd(const SurfaceModel& surface, const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) {
+    Eigen::MatrixX2d xy(xs.size() * ys.size(), 2);
+    for (Eigen::Index j = 0; j < ys.size(); ++j)
+      for (Eigen::Index i = 0; i < xs.size(); ++i) xy.row(j * xs.size() + i) << xs[i], ys[j];
+    const Eigen::VectorXd sd = surface.variance(xy).cwiseMax(0.0).cwiseSqrt();
+    return Eigen::Map<const Eigen::MatrixXd>(sd.data(), xs.size(), ys.size());
+  }
+
+  std::string outside_message(double x, double y, double z, const std::array<double, 2>& range) const {
+    std::ostringstream s;
+    s << "the surface mean at (" << x << ", " << y << ") mm is z = " << z << " mm, more than outside_data_margin_mm "
+      << outside_margin_mm_ << " outside the fitted points' z range [" << range[0] << ", " << range[1]
+      << "] mm: the model extrapolates (an object the sensor could not reach everywhere?)";
+    return s.str();
+  }
+
+  // Per call: how many points were masked, and a warning the first time.
+  void report(long outside, long unsure, double worst, RunContext& ctx) {
+    ctx.metric("extrapolated_points", static_cast<double>(outside), "points");
+    if (max_sd_mm_) ctx.metric("uncertain_points", static_cast<double>(unsure), "points");
+    if (outside == 0 || masked_total_ > 0) {
+      masked_total_ += outside;
+      return;
+    }
+    masked_total_ += outside;
+    std::ostringstream s;
+    s << outside << " lattice points lie up to " << worst << " mm outside the fitted points' z range (margin "
+      << outside_margin_mm_ << " mm): " << (outside_ == OutsideData::Mask ? "dropped" : "kept")
+      << "; the surface there is extrapolation, not measurement";
+    ctx.log("warning: " + s.str());
+    ctx.note("extrapolation", s.str());
+  }
+
   SurfaceModelPtr last_surface_;
   CloudConstPtr last_cloud_;
 };

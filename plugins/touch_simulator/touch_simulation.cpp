@@ -77,6 +77,14 @@ double TouchSimulation::safe_height_mm(const Eigen::Vector2d& xy_mm) const {
   return object_->max_height_mm(xy_mm, r) + scene_.robot.safe_clearance_mm + r;
 }
 
+double TouchSimulation::apex_above_target_surface_mm() const {
+  const SimulatedFrame& f = frame();
+  // The sensor's z points down (downward_sensor_pose): the apex is one gel
+  // radius below its origin.
+  const double apex_z = f.touch.base_from_sensor.translation().z() - scene_.sensor.gel.radius_mm();
+  return apex_z - object_->height_mm(f.touch.target_xy_mm);
+}
+
 const SimulatedFrame& TouchSimulation::step(const Eigen::Vector2d& target_xy_mm, bool previous_stable) {
   const double start = motion_.touching() ? 0.0 : safe_height_mm(target_xy_mm);
   SimulatedFrame& f = frame_;

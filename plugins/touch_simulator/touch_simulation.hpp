@@ -63,6 +63,10 @@ class TouchSimulation {
 
   // The sensor origin's start height for a touch at `xy`.
   double safe_height_mm(const Eigen::Vector2d& xy_mm) const;
+  // This frame's gel apex above the object's surface at the touch target:
+  // about minus the press depth when the gel reached the target, far above 0
+  // when something higher under the gel (a rim, the object's side) stopped it.
+  double apex_above_target_surface_mm() const;
 
   // Simulates the next frame (see TouchMotion for the touch's course).
   const SimulatedFrame& step(const Eigen::Vector2d& target_xy_mm, bool previous_stable);

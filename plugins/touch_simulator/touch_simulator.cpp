@@ -38,6 +38,8 @@ class TouchSimulator final : public Stage {
   // Not set: the scene's robot section says.
   std::optional<double> speed_mm_s_, approach_speed_mm_s_, press_depth_mm_, safe_clearance_mm_, max_contact_depth_mm_;
   std::optional<std::array<double, 2>> target_xy_mm_;
+  double reach_tolerance_mm_ = 15.0;
+  long unreachable_touches_ = 0;
 
   touch_simulator::Scene scene_;  // read at check, with the robot values in force
   std::shared_ptr<const touch_simulator::ObjectSurface> object_;  // built at check
@@ -58,6 +60,9 @@ class TouchSimulator final : public Stage {
         .doc("gel apex above the highest object point under the gel at the start (not set: the scene's)");
     p.add("max_contact_depth_mm", max_contact_depth_mm_).unit("mm").above(0)
         .doc("travel past first contact without stable contact that fails the run (not set: the scene's)");
+    p.add("reach_tolerance_mm", reach_tolerance_mm_, 15.0).unit("mm").above(0)
+        .doc("a pressed gel apex this far above the object's surface at the target means the gel could not "
+             "reach it (a rim or the object's side under the gel): counted, warned, noted in summary.json");
     p.add("target_xy_mm", target_xy_mm_).unit("mm")
         .doc("[x, y] of the touch in the base frame when input 'target' is not wired");
   }
@@ -158,11 +163,30 @@ class TouchSimulator final : public Stage {
     if (f.touch.pressed) {
       ctx.metric("touch_frames", f.touch.frame_in_touch + 1, "frames");
       ctx.metric("press_travel_mm", f.travel_past_contact_mm, "mm");
+      report_reach(f, ctx);
     }
+  }
+
+  // A touch whose gel stopped far above the surface at its target recorded
+  // something else (a rim, the object's side): its points are not of the
+  // target, and a surface fitted to them can swing far from the object.
+  void report_reach(const touch_simulator::SimulatedFrame& f, RunContext& ctx) {
+    const double gap = sim_->apex_above_target_surface_mm();
+    ctx.metric("apex_above_target_mm", gap, "mm");
+    if (gap <= reach_tolerance_mm_) return;
+    ++unreachable_touches_;
+    std::ostringstream s;
+    s << "warning: touch " << f.touch.touch << " at (" << f.touch.target_xy_mm.x() << ", " << f.touch.target_xy_mm.y()
+      << ") mm did not reach the object's surface there: the pressed gel apex stopped " << gap
+      << " mm above it (reach_tolerance_mm " << reach_tolerance_mm_
+      << "); something higher under the gel, a rim or the object's side, was touched instead";
+    ctx.log(s.str());
+    ctx.note("unreachable_touch_" + std::to_string(f.touch.touch), s.str().substr(9));
   }
 
   void on_finish(RunContext& ctx) override {
     if (!sim_) return;
+    ctx.metric("unreachable_touches", static_cast<double>(unreachable_touches_), "touches");
     const auto& c = sim_->counts();
     ctx.metric("frames_simulated", static_cast<double>(c.frames_simulated), "frames");
     ctx.metric("frames_projected", static_cast<double>(c.frames_projected), "frames");

@@ -60,8 +60,8 @@ TEST(GpSparseSurface, InducingPointsAtTheDataReproduceTheExactModel) {
   exact->fit(xy, z);
   auto sparse = std::make_shared<SparseVfeGp>(KernelKind::rbf, h);
   sparse->fit(xy, z, rows_of(xy, farthest_point_subset(xy, 1000, 0)));
-  const GpSurfaceModel exact_model(exact);
-  const SparseSurfaceModel sparse_model(sparse);
+  const GpSurfaceModel exact_model(exact, std::nullopt);
+  const SparseSurfaceModel sparse_model(sparse, std::nullopt);
   const Eigen::MatrixX2d q = grid_xy(9, 9, 0.0, 60.0);
   EXPECT_EQ(sparse_model.training_size(), 300u);
   // The VFE solves go through K_mm, whose conditioning amplifies the kernel's

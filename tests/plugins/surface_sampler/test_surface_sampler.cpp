@@ -64,7 +64,62 @@ class CountingPlane final : public SurfaceModel {
  private:
   double height_mm_;
 };
+
+// z = x mm over [0, 100] (a surface swinging far from its data), fitted to
+// points with z in [0, 10]; its standard deviation is x / 10 mm.
+class SwingingSurface final : public SurfaceModel {
+ public:
+  std::size_t training_size() const override { return 3; }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return xy.col(0); }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return (xy.col(0) / 10).array().square(); }
+  std::optional<std::array<double, 2>> data_z_range_mm() const override { return std::array<double, 2>{0, 10}; }
+  std::map<std::string, double> hyperparameters() const override { return {}; }
+};
+
+std::map<std::string, ParamValue> swing_params(std::map<std::string, ParamValue> more) {
+  more["workspace_x_mm"] = std::vector<double>{0, 100};
+  more["workspace_y_mm"] = std::vector<double>{0, 10};
+  more["resolution"] = std::vector<std::int64_t>{101, 2};
+  return more;
+}
 }  // namespace
+
+// A mean more than the margin outside the data's z range is extrapolation:
+// masked by default (here x > 30 with margin 20), or the run fails, or it is
+// kept; each way it is counted, never passed on silently.
+TEST(SurfaceSamplerStage, AMeanFarOutsideTheDataIsMaskedOrAnError) {
+  const auto model = SurfaceModelPtr(std::make_shared<SwingingSurface>());
+  touchcloud::test::StageHarness mask("surface_sampler", swing_params({}));
+  mask.configure();
+  const CloudConstPtr masked = mask.process_one<CloudConstPtr>({{"surface", model}}, "cloud");
+  EXPECT_EQ(masked->size(), 2u * 31u);  // x = 0 .. 30
+  for (const auto& q : masked->points) EXPECT_LE(q.z, 30.0f);
+  EXPECT_EQ(mask.metric("extrapolated_points"), 2 * 70);
+
+  touchcloud::test::StageHarness keep("surface_sampler", swing_params({{"outside_data", std::string("keep")}}));
+  keep.configure();
+  EXPECT_EQ(keep.process_one<CloudConstPtr>({{"surface", model}}, "cloud")->size(), 2u * 101u);
+  EXPECT_EQ(keep.metric("extrapolated_points"), 2 * 70);
+
+  touchcloud::test::StageHarness error("surface_sampler", swing_params({{"outside_data", std::string("error")}}));
+  error.configure();
+  try {
+    error.process_one<CloudConstPtr>({{"surface", model}}, "cloud");
+    FAIL() << "an extrapolated surface passed";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("outside the fitted points' z range [0, 10] mm"), std::string::npos) << e.what();
+  }
+}
+
+// max_sd_mm drops points where the model is unsure (sd = x / 10 > 2: x > 20).
+TEST(SurfaceSamplerStage, MaxSdMasksWhereTheModelIsUnsure) {
+  touchcloud::test::StageHarness stage("surface_sampler", swing_params({{"max_sd_mm", 2.0}}));
+  stage.configure();
+  const CloudConstPtr c =
+      stage.process_one<CloudConstPtr>({{"surface", SurfaceModelPtr(std::make_shared<SwingingSurface>())}}, "cloud");
+  EXPECT_EQ(c->size(), 2u * 21u);  // x = 0 .. 20
+  EXPECT_EQ(stage.metric("uncertain_points"), 2 * 10);  // x = 21 .. 30; beyond, extrapolated first
+}
 
 TEST(SurfaceSamplerStage, TheSameModelAgainGivesTheSamePointsWithoutEvaluating) {
   touchcloud::test::StageHarness stage(

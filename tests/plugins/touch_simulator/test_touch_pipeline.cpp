@@ -2,6 +2,7 @@
 // with stable_contact deciding, what gets computed for which outputs, seeds,
 // overrides and failures.
 #include <cmath>
+#include <sstream>
 
 #include "cloud_files.hpp"
 #include "pipeline_fixture.hpp"
@@ -216,4 +217,50 @@ TEST_F(TouchPipeline, NeedsATargetAndAReadableScene) {
   const auto diagnostics = errors(loop(kTarget, kFromContact, kContactStage));
   ASSERT_FALSE(diagnostics.empty());
   EXPECT_TRUE(touchcloud::test::mentions(diagnostics[0], "object.mesh")) << diagnostics[0].str();
+}
+
+namespace {
+
+// A ring 50 mm tall (outer radius 40 mm, inner 20 mm) as an OBJ: top annulus,
+// inner and outer walls. The gel (radius 32.5 mm) cannot reach the table in
+// its hole: the dome rests on the inner rim.
+std::string ring_obj() {
+  constexpr int n = 64;
+  constexpr double outer = 40, inner = 20, height = 50;
+  std::ostringstream obj;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n, c = std::cos(a), s = std::sin(a);
+    obj << "v " << outer * c << ' ' << outer * s << ' ' << height << '\n'   // 4i + 1
+        << "v " << inner * c << ' ' << inner * s << ' ' << height << '\n'   // 4i + 2
+        << "v " << outer * c << ' ' << outer * s << " 0\n"                  // 4i + 3
+        << "v " << inner * c << ' ' << inner * s << " 0\n";                 // 4i + 4
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = 4 * i + 1, b = 4 * ((i + 1) % n) + 1;
+    obj << "f " << a << ' ' << b << ' ' << b + 1 << ' ' << a + 1 << '\n'          // top
+        << "f " << a + 1 << ' ' << b + 1 << ' ' << b + 3 << ' ' << a + 3 << '\n'  // inner wall
+        << "f " << a << ' ' << a + 2 << ' ' << b + 2 << ' ' << b << '\n';         // outer wall
+  }
+  return obj.str();
+}
+
+}  // namespace
+
+// In the ring's hole the pressed gel stops on the rim, far above the table
+// at the target: the touch is counted, warned about and noted; a touch on
+// the ring's top is not.
+TEST_F(TouchPipeline, ATouchThatCannotReachTheSurfaceAtItsTargetIsReported) {
+  write(ring_obj(), "ring.obj");
+  write("object: {mesh: ring.obj}\neffects: [contact]\n", "scene.yaml");
+  const RunResult hole = run(loop(", target_xy_mm: [0, 0]", kFromContact, kContactStage));
+  EXPECT_EQ(metric(hole, "sim.unreachable_touches"), 1);
+  EXPECT_GT(metric(hole, "sim.apex_above_target_mm"), 30.0);
+  ASSERT_EQ(hole.record.notes.count("sim.unreachable_touch_0"), 1u);
+  EXPECT_NE(hole.record.notes.at("sim.unreachable_touch_0").find("did not reach the object's surface"),
+            std::string::npos);
+
+  const RunResult top = run(loop(", target_xy_mm: [30, 0]", kFromContact, kContactStage));
+  EXPECT_EQ(metric(top, "sim.unreachable_touches"), 0);
+  EXPECT_LT(metric(top, "sim.apex_above_target_mm"), 0.0);
+  EXPECT_EQ(top.record.notes.count("sim.unreachable_touch_0"), 0u);
 }

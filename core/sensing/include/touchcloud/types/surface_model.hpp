@@ -2,8 +2,10 @@
 // Implemented by surface-fitting plugins (the Gaussian process in gp_surface).
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -29,6 +31,10 @@ class SurfaceModel {
   }
   // Posterior variance (mm^2) at each row; finite and >= 0.
   virtual Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const = 0;
+  // [min, max] z (mm) of the data the model was fitted to; nothing when it
+  // has none or does not say. A mean far outside it is extrapolation: stages
+  // that sample the surface mask it or refuse it rather than pass it on.
+  virtual std::optional<std::array<double, 2>> data_z_range_mm() const { return std::nullopt; }
   // Named hyperparameters with units in the name ("lengthscale_mm").
   virtual std::map<std::string, double> hyperparameters() const = 0;
 };

@@ -54,8 +54,12 @@ std::string quote(const std::string& s) {
 }  // namespace
 
 CliResult run_cli(const std::vector<std::string>& args, const std::string& env) {
+  return run_program(cli_path(), args, env);
+}
+
+CliResult run_program(const fs::path& program, const std::vector<std::string>& args, const std::string& env) {
   TempDir io;
-  std::string cmd = env + (env.empty() ? "" : " ") + quote(cli_path().string());
+  std::string cmd = env + (env.empty() ? "" : " ") + quote(program.string());
   for (const auto& a : args) cmd += " " + quote(a);
   cmd += " >" + quote((io / "out").string()) + " 2>" + quote((io / "err").string());
   const int status = std::system(cmd.c_str());

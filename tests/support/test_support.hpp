@@ -38,5 +38,8 @@ struct CliResult {
 };
 // Runs build/bin/touchcloud with `args` (shell-quoted here) and `env` prefix.
 CliResult run_cli(const std::vector<std::string>& args, const std::string& env = "");
+// The same for another program of the build (build/bin/NAME).
+CliResult run_program(const std::filesystem::path& program, const std::vector<std::string>& args,
+                      const std::string& env = "");
 
 }  // namespace touchcloud::test

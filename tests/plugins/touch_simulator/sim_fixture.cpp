@@ -1,5 +1,8 @@
 #include "sim_fixture.hpp"
 
+#include <cmath>
+#include <sstream>
+
 #include <gtest/gtest.h>
 
 namespace touchcloud::test {
@@ -22,6 +25,26 @@ const touch_simulator::SimulatedFrame& press_into(touch_simulator::TouchSimulati
     if (f.travel_past_contact_mm >= travel_mm) return f;
   }
   throw std::runtime_error("press_into: never got that deep");
+}
+
+std::string ring_obj(double unit) {
+  constexpr int n = 64;
+  const double outer = 40 * unit, inner = 20 * unit, height = 50 * unit;
+  std::ostringstream obj;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n, c = std::cos(a), s = std::sin(a);
+    obj << "v " << outer * c << ' ' << outer * s << ' ' << height << '\n'   // 4i + 1
+        << "v " << inner * c << ' ' << inner * s << ' ' << height << '\n'   // 4i + 2
+        << "v " << outer * c << ' ' << outer * s << " 0\n"                  // 4i + 3
+        << "v " << inner * c << ' ' << inner * s << " 0\n";                 // 4i + 4
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = 4 * i + 1, b = 4 * ((i + 1) % n) + 1;
+    obj << "f " << a << ' ' << b << ' ' << b + 1 << ' ' << a + 1 << '\n'          // top
+        << "f " << a + 1 << ' ' << b + 1 << ' ' << b + 3 << ' ' << a + 3 << '\n'  // inner wall
+        << "f " << a << ' ' << a + 2 << ' ' << b + 2 << ' ' << b << '\n';         // outer wall
+  }
+  return obj.str();
 }
 
 }  // namespace touchcloud::test

@@ -19,6 +19,12 @@ std::filesystem::path write_plane_scene(const TempDir& dir, const std::string& e
                                         const std::string& name = "scene.yaml");
 touch_simulator::Scene plane_scene(const TempDir& dir, const std::string& effects, const std::string& extra = "");
 
+// A ring 50 mm tall (outer radius 40 mm, inner 20 mm, vertices times
+// `unit_mm`, e.g. 0.001 for a mesh in metres) as an OBJ: top annulus, inner
+// and outer walls. The gel (radius 32.5 mm) cannot reach the table in its
+// hole: the dome rests on the inner rim.
+std::string ring_obj(double unit = 1.0);
+
 // Steps a touch at `xy` without a stable-contact verdict until the sensor is
 // `travel_mm` past first contact; returns the last frame.
 const touch_simulator::SimulatedFrame& press_into(touch_simulator::TouchSimulation& sim, const Eigen::Vector2d& xy, double travel_mm);

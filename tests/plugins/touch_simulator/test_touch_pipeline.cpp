@@ -6,6 +6,7 @@
 
 #include "cloud_files.hpp"
 #include "pipeline_fixture.hpp"
+#include "sim_fixture.hpp"
 
 using namespace touchcloud;
 
@@ -219,38 +220,11 @@ TEST_F(TouchPipeline, NeedsATargetAndAReadableScene) {
   EXPECT_TRUE(touchcloud::test::mentions(diagnostics[0], "object.mesh")) << diagnostics[0].str();
 }
 
-namespace {
-
-// A ring 50 mm tall (outer radius 40 mm, inner 20 mm) as an OBJ: top annulus,
-// inner and outer walls. The gel (radius 32.5 mm) cannot reach the table in
-// its hole: the dome rests on the inner rim.
-std::string ring_obj() {
-  constexpr int n = 64;
-  constexpr double outer = 40, inner = 20, height = 50;
-  std::ostringstream obj;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n, c = std::cos(a), s = std::sin(a);
-    obj << "v " << outer * c << ' ' << outer * s << ' ' << height << '\n'   // 4i + 1
-        << "v " << inner * c << ' ' << inner * s << ' ' << height << '\n'   // 4i + 2
-        << "v " << outer * c << ' ' << outer * s << " 0\n"                  // 4i + 3
-        << "v " << inner * c << ' ' << inner * s << " 0\n";                 // 4i + 4
-  }
-  for (int i = 0; i < n; ++i) {
-    const int a = 4 * i + 1, b = 4 * ((i + 1) % n) + 1;
-    obj << "f " << a << ' ' << b << ' ' << b + 1 << ' ' << a + 1 << '\n'          // top
-        << "f " << a + 1 << ' ' << b + 1 << ' ' << b + 3 << ' ' << a + 3 << '\n'  // inner wall
-        << "f " << a << ' ' << a + 2 << ' ' << b + 2 << ' ' << b << '\n';         // outer wall
-  }
-  return obj.str();
-}
-
-}  // namespace
-
 // In the ring's hole the pressed gel stops on the rim, far above the table
 // at the target: the touch is counted, warned about and noted; a touch on
 // the ring's top is not.
 TEST_F(TouchPipeline, ATouchThatCannotReachTheSurfaceAtItsTargetIsReported) {
-  write(ring_obj(), "ring.obj");
+  write(touchcloud::test::ring_obj(), "ring.obj");
   write("object: {mesh: ring.obj}\neffects: [contact]\n", "scene.yaml");
   const RunResult hole = run(loop(", target_xy_mm: [0, 0]", kFromContact, kContactStage));
   EXPECT_EQ(metric(hole, "sim.unreachable_touches"), 1);

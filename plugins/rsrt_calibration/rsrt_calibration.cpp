@@ -1,14 +1,18 @@
 // rsrt_calibration: refractive calibration of the GelStereo plate from
-// checkerboard presses. Runs in a loop, one press per iteration, and
-// collects the corners; on finish it estimates d_xy, the plate normal and
-// mu_silicone (calibration/plate_calibration.hpp) and writes the calibrated
-// sensor file.
+// checkerboard presses. Takes the presses one per loop iteration (input
+// 'corners', the simulator's way) or all at once (input 'views', corners
+// found in images), and optionally the cameras from stereo calibration in
+// place of the initial guess's; on finish it estimates d_xy, the plate normal
+// and mu_silicone (calibration/plate_calibration.hpp) and writes the
+// calibrated sensor file.
 #include <cmath>
 #include <sstream>
 
 #include "calibration/plate_calibration.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/types/board_views.hpp"
+#include "touchcloud/types/stereo_cameras.hpp"
 
 namespace touchcloud {
 
@@ -24,6 +28,8 @@ class RsrtCalibration final : public Stage {
   rsrt_calibration::Checkerboard board_;
   sensor::GelStereoSensor sensor_read_;  // the initial guess, read at check
   std::vector<rsrt_calibration::PressCorners> presses_;
+  std::vector<std::string> press_names_;  // for the per-press residuals
+  StereoCamerasPtr cameras_;              // from stereo calibration, when connected
 
   void declare_parameters(ParameterSet& p) override {
     sensor_.declare(p, "the initial guess: a scene or sensor file with a 'sensor:' section (cameras known, plate "
@@ -46,7 +52,11 @@ class RsrtCalibration final : public Stage {
   }
 
   void declare_ports(PortSet& ports) override {
-    ports.input<MarkerSetPtr>("corners", "one press: corner pixels in both views, id = corner index, matched");
+    ports.optional_input<MarkerSetPtr>("corners", "one press: corner pixels in both views, id = corner index, "
+                                                  "matched (connect this or 'views')");
+    ports.optional_input<BoardViewsPtr>("views", "every press at once: corners found in images (board_image_corners)");
+    ports.optional_input<StereoCamerasPtr>("cameras", "the cameras from stereo calibration; replace the initial "
+                                                      "guess's intrinsics, distortion and right_from_left");
   }
 
   void on_check(RunContext&) override {
@@ -57,20 +67,66 @@ class RsrtCalibration final : public Stage {
     sensor_read_ = sensor_.load(true);
   }
 
-  void on_configure(RunContext&) override { presses_.clear(); }
+  void on_configure(RunContext&) override {
+    presses_.clear();
+    press_names_.clear();
+    cameras_.reset();
+  }
 
   void on_process(StageIO& io, RunContext& ctx) override {
+    if (io.has("corners") == io.has("views"))
+      throw InputError("connect exactly one of the inputs 'corners' (one press per call) and 'views' (all presses)");
+    if (const auto* cameras = io.optional_input<StereoCamerasPtr>("cameras")) {
+      if (!*cameras) throw InputError("input 'cameras': no cameras");
+      if (!sensor_.lens_distortion)
+        throw ParameterError("lens_distortion", "must be true with calibrated cameras on input 'cameras': their "
+                                                "lens distortion is part of the calibration");
+      cameras_ = *cameras;
+    }
+    if (io.has("views")) {
+      const auto& views = io.input<BoardViewsPtr>("views");
+      if (!views) throw InputError("input 'views': no board views");
+      if (views->cols != board_.cols || views->rows != board_.rows)
+        throw ParameterError("board_corners", "the corners on input 'views' were found on a " +
+                                                  std::to_string(views->cols) + " x " + std::to_string(views->rows) +
+                                                  " board");
+      for (const auto& view : views->views) {
+        if (!view.corners) throw InputError("images " + view.left_file + ", " + view.right_file + ": no corners");
+        add_press(rsrt_calibration::press_corners_from(*view.corners, board_, "images " + view.left_file + ", " +
+                                                                                  view.right_file),
+                  std::filesystem::path(view.left_file).filename().string(), ctx);
+      }
+      return;
+    }
     const auto& markers = io.input<MarkerSetPtr>("corners");
     const std::string what = "press " + std::to_string(presses_.size()) + " (input 'corners')";
     if (!markers) throw InputError(what + ": no marker set");
-    presses_.push_back(rsrt_calibration::press_corners_from(*markers, board_, what));
+    add_press(rsrt_calibration::press_corners_from(*markers, board_, what), "press " + std::to_string(presses_.size()),
+              ctx);
+  }
+
+  void add_press(rsrt_calibration::PressCorners press, std::string name, RunContext& ctx) {
+    presses_.push_back(std::move(press));
+    press_names_.push_back(std::move(name));
     ctx.metric("press_corners", static_cast<double>(presses_.back().corners.size()));
   }
 
   void on_finish(RunContext& ctx) override {
     if (presses_.empty()) throw InputError("no presses arrived on input 'corners': nothing to calibrate");
     sensor::GelStereoSensor sensor = sensor_read_;
-    const optics::StereoRig initial = sensor_.rig(sensor, true);
+    if (cameras_) {
+      sensor.cameras.left = cameras_->left;
+      sensor.cameras.right = cameras_->right;
+      sensor.cameras.right_from_left = cameras_->right_from_left;
+    }
+    const optics::StereoRig initial = [&] {
+      try {
+        return sensor_.rig(sensor, true);
+      } catch (const InputError& e) {
+        throw InputError(std::string("the calibrated cameras (input 'cameras') do not fit the initial guess's plate: ") +
+                         e.what());
+      }
+    }();
     rsrt_calibration::PlateCalibrationOptions options;
     options.spans = distances_;
     options.use_diagonals = diagonals_;
@@ -89,6 +145,18 @@ class RsrtCalibration final : public Stage {
             << "Mean corner-distance error " << result.mean_corner_error_before_mm << " mm before, "
             << result.mean_corner_error_after_mm << " mm after; " << result.iterations << " iterations; "
             << result.termination;
+    // Each press's own residual, for finding a bad image: the mean
+    // corner-distance error (mm) through the calibrated rig.
+    const optics::StereoRig calibrated = sensor_.rig(sensor, true);
+    std::ostringstream per_press;
+    for (std::size_t i = 0; i < presses_.size(); ++i) {
+      const double error = rsrt_calibration::mean_corner_error_mm(calibrated, board_, {presses_[i]});
+      ctx.metric("press_corner_error_mm", error, "mm");
+      per_press << press_names_[i] << " " << error << " mm\n";
+    }
+    ctx.note("press_residuals", per_press.str());
+    if (cameras_) comment << "\nCameras from stereo calibration (input 'cameras').";
+
     std::filesystem::path file;
     try {
       file = ctx.output_path(output_);

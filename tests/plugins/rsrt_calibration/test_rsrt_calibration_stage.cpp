@@ -62,3 +62,20 @@ TEST_F(RsrtCalibrationStage, FlatPressesFailTheRunAsBadInput) {
   }
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out/calibrated.yaml"));
 }
+
+TEST_F(RsrtCalibrationStage, WithoutPressesOnEitherInputTheRunIsBadInput) {
+  const auto src = test::source_dir().string();
+  Pipeline p = load("stages:\n  - id: calibrate\n    plugin: rsrt_calibration\n    params: {sensor: " + src +
+                    "/sample_clouds/fox_mask/scene.yaml, output: calibrated.yaml}\n");
+  RunOptions o;
+  o.quiet = true;
+  o.out_dir = dir_ / "out";
+  try {
+    run_pipeline(p, o);
+    FAIL() << "a calibration without presses ran";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("connect exactly one of the inputs 'corners'"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out/calibrated.yaml"));
+}

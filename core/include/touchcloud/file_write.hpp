@@ -1,0 +1,14 @@
+// Writing a file so that a full disk (or any failed write) is an error, not
+// a silently short file: every write and the close are checked.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace touchcloud {
+
+// Creates or truncates `file` and writes `bytes`; RunError naming the file
+// and the system's reason (e.g. "No space left on device") on any failure.
+void write_file(const std::filesystem::path& file, std::string_view bytes);
+
+}  // namespace touchcloud

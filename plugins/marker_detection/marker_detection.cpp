@@ -18,8 +18,9 @@ const LibraryVersion opencv_version("opencv", CV_VERSION);
 class MarkerDetection final : public Stage {
   MarkerPolarity polarity_ = MarkerPolarity::Dark;
   std::vector<double> diameter_px_;
-  double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0;
+  double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0, min_quality_ = 0;
   int background_window_px_ = 0;
+  BorderDots border_ = BorderDots::Keep;
   std::optional<StereoMarkerDetector> detector_;
 
   void declare_parameters(ParameterSet& p) override {
@@ -50,6 +51,13 @@ class MarkerDetection final : public Stage {
         .at_least(1)
         .doc("largest ratio of a dot's principal axes (contrast-weighted moments; a disc makes 1, a dot seen "
              "at 60 degrees 2)");
+    p.add("border", border_, d.border, {{"keep", BorderDots::Keep}, {"drop", BorderDots::Drop}})
+        .doc("a dot cut by the image border (its blob touches the border): one marker at the centroid of what "
+             "is visible, its quality scaled by the share visible (keep), or none (drop)");
+    p.add("min_quality", min_quality_, d.min_quality)
+        .range(0, 1)
+        .doc("markers of lower quality are dropped; quality = contrast x shape x completeness, each in [0, 1] "
+             "(README, marker_detection)");
   }
 
   void declare_ports(PortSet& ports) override {
@@ -67,6 +75,8 @@ class MarkerDetection final : public Stage {
     o.background_window_px = background_window_px_;
     o.min_fill = min_fill_;
     o.max_elongation = max_elongation_;
+    o.border = border_;
+    o.min_quality = min_quality_;
     detector_.emplace(o);  // checks the options (ParameterError)
   }
 

@@ -1,10 +1,11 @@
-// marker_detection: finds the marker dots in both images of a stereo frame
-// (sub-pixel centres, quality), leaving stereo matching to a later stage.
-// The detector itself is detector/marker_detector.hpp.
+// marker_detection: finds the marker dots in both images of a stereo frame,
+// or in one camera's image (sub-pixel centres, quality), leaving stereo
+// matching to a later stage. The detector itself is detector/marker_detector.hpp.
 #include <optional>
 
 #include "detector/stereo_markers.hpp"
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/types/camera_image.hpp"
 #include <opencv2/core/version.hpp>
 #include "touchcloud/library_versions.hpp"
 
@@ -21,7 +22,8 @@ class MarkerDetection final : public Stage {
   double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0, min_quality_ = 0;
   int background_window_px_ = 0;
   BorderDots border_ = BorderDots::Keep;
-  std::optional<StereoMarkerDetector> detector_;
+  std::optional<StereoMarkerDetector> stereo_;
+  std::optional<MarkerDetector> one_camera_;
 
   void declare_parameters(ParameterSet& p) override {
     const MarkerDetectorOptions d;
@@ -61,9 +63,11 @@ class MarkerDetection final : public Stage {
   }
 
   void declare_ports(PortSet& ports) override {
-    ports.input<StereoFramePtr>("frame", "stereo images, 8-bit grey or BGR, both the same size");
+    ports.one_of_inputs<StereoFramePtr>("images", "frame", "stereo images, 8-bit grey or BGR, both the same size");
+    ports.one_of_inputs<CameraImagePtr>("images", "image",
+                                        "one camera's image (a single-camera sensor), 8-bit grey or BGR");
     ports.output<MarkerSetPtr>("markers", "sub-pixel marker centres per view (id -1, quality in [0, 1]); "
-                                          "matches empty");
+                                          "matches empty; from `image`: its view only");
   }
 
   void on_configure(RunContext&) override {
@@ -77,14 +81,25 @@ class MarkerDetection final : public Stage {
     o.max_elongation = max_elongation_;
     o.border = border_;
     o.min_quality = min_quality_;
-    detector_.emplace(o);  // checks the options (ParameterError)
+    stereo_.emplace(o);  // checks the options (ParameterError)
+    one_camera_.emplace(o);
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
-    const auto& frame = io.input<StereoFramePtr>("frame");
-    auto markers = std::make_shared<MarkerSet>(detector_->detect(frame, "frame"));
-    ctx.metric("markers_left", static_cast<double>(markers->left.size()), "markers");
-    ctx.metric("markers_right", static_cast<double>(markers->right.size()), "markers");
+    std::shared_ptr<MarkerSet> markers;
+    if (const auto* frame = io.optional_input<StereoFramePtr>("frame")) {
+      markers = std::make_shared<MarkerSet>(stereo_->detect(*frame, "frame"));
+    } else {
+      const auto& image = io.input<CameraImagePtr>("image");
+      if (!image) throw InputError("input 'image': no camera image (null)");
+      markers = std::make_shared<MarkerSet>();
+      markers->views = {image->view};
+      markers->of(image->view) = one_camera_->detect(image->image, "input 'image'");
+      markers->timestamp_s = image->timestamp_s;
+    }
+    for (const CameraView view : markers->views)
+      ctx.metric(std::string("markers_") + camera_view_name(view), static_cast<double>(markers->of(view).size()),
+                 "markers");
     io.output<MarkerSetPtr>("markers", std::move(markers));
   }
 };
@@ -92,4 +107,4 @@ class MarkerDetection final : public Stage {
 }  // namespace touchcloud
 
 TOUCHCLOUD_PLUGIN(touchcloud::MarkerDetection, "marker_detection",
-                  "Finds marker dots with sub-pixel centres in both images of a stereo frame")
+                  "Finds marker dots with sub-pixel centres in both images of a stereo frame, or in one camera's image")

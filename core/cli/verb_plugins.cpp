@@ -28,7 +28,9 @@ nlohmann::json param_json(const ParamSpec& p) {
 }
 
 nlohmann::json port_json(const PortSpec& p) {
-  return {{"name", p.name}, {"type", p.type}, {"doc", p.doc}, {"optional", p.optional}};
+  nlohmann::json j = {{"name", p.name}, {"type", p.type}, {"doc", p.doc}, {"optional", p.optional}};
+  if (!p.one_of.empty()) j["one_of"] = p.one_of;  // wire exactly one input of this group
+  return j;
 }
 
 nlohmann::json plugin_json(const LoadedPlugin& p) {
@@ -70,7 +72,10 @@ void print_plugin(const LoadedPlugin& p, bool full) {
     std::cout << "  " << title << ":\n";
     for (const auto& port : list)
       std::cout << "    " << std::left << std::setw(22) << port.name << " " << std::setw(15) << port.type
-                << (port.optional ? " (optional) " : " ") << port.doc << "\n";
+                << (!port.one_of.empty() ? " (one of its " + port.one_of + ") "
+                    : port.optional      ? std::string(" (optional) ")
+                                         : std::string(" "))
+                << port.doc << "\n";
   };
   ports("inputs", s.inputs);
   ports("outputs", s.outputs);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -311,8 +312,32 @@ class Resolver {
         if (!in.optional && !wired.count(in.name))
           error(n.where, who + " is missing its input '" + in.name + "' (" + in.type + "): add inputs: {" +
                              in.name + ": STAGE.OUTPUT}");
+      check_one_of(n, who, *s->ports, wired);
     }
     if (diags_.empty()) order_scope(nodes);
+  }
+
+  // Each group of one_of inputs has exactly one of them wired.
+  void check_one_of(const NodeDoc& n, const std::string& who, const PortSet& ports, const std::set<std::string>& wired) {
+    std::map<std::string, std::vector<const PortSpec*>> groups;
+    for (const auto& in : ports.inputs())
+      if (!in.one_of.empty()) groups[in.one_of].push_back(&in);
+    for (const auto& [group, inputs] : groups) {
+      std::string names, wired_names;
+      int wired_count = 0;
+      for (const PortSpec* in : inputs) {
+        names += (names.empty() ? "'" : "' or '") + in->name;
+        if (!wired.count(in->name)) continue;
+        wired_names += (wired_count++ == 0 ? "'" : "' and '") + in->name;
+      }
+      names += "'";
+      if (wired_count == 0)
+        error(n.where, who + " is missing its " + group + ": wire one of its inputs " + names + " (add inputs: {" +
+                           inputs.front()->name + ": STAGE.OUTPUT})");
+      else if (wired_count > 1)
+        error(n.where, who + " takes one of its inputs " + names + " (its " + group + "), but " + wired_names +
+                           "' are wired");
+    }
   }
 
   const PortSpec* find_output(const InputRefDoc& ref, const std::string& who) {

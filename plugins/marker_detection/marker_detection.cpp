@@ -1,10 +1,11 @@
-// marker_detection: finds the marker dots in both images of a stereo frame
-// (sub-pixel centres, quality), leaving stereo matching to a later stage.
-// The detector itself is detector/marker_detector.hpp.
+// marker_detection: finds the marker dots in both images of a stereo frame,
+// or in one camera's image (sub-pixel centres, quality), leaving stereo
+// matching to a later stage. The detector itself is detector/marker_detector.hpp.
 #include <optional>
 
 #include "detector/stereo_markers.hpp"
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/types/camera_image.hpp"
 #include <opencv2/core/version.hpp>
 #include "touchcloud/library_versions.hpp"
 
@@ -18,9 +19,11 @@ const LibraryVersion opencv_version("opencv", CV_VERSION);
 class MarkerDetection final : public Stage {
   MarkerPolarity polarity_ = MarkerPolarity::Dark;
   std::vector<double> diameter_px_;
-  double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0;
+  double contrast_grey_ = 0, min_fill_ = 0, max_elongation_ = 0, min_quality_ = 0;
   int background_window_px_ = 0;
-  std::optional<StereoMarkerDetector> detector_;
+  BorderDots border_ = BorderDots::Keep;
+  std::optional<StereoMarkerDetector> stereo_;
+  std::optional<MarkerDetector> one_camera_;
 
   void declare_parameters(ParameterSet& p) override {
     const MarkerDetectorOptions d;
@@ -50,12 +53,21 @@ class MarkerDetection final : public Stage {
         .at_least(1)
         .doc("largest ratio of a dot's principal axes (contrast-weighted moments; a disc makes 1, a dot seen "
              "at 60 degrees 2)");
+    p.add("border", border_, d.border, {{"keep", BorderDots::Keep}, {"drop", BorderDots::Drop}})
+        .doc("a dot cut by the image border (its blob touches the border): one marker at the centroid of what "
+             "is visible, its quality scaled by the share visible (keep), or none (drop)");
+    p.add("min_quality", min_quality_, d.min_quality)
+        .range(0, 1)
+        .doc("markers of lower quality are dropped; quality = contrast x shape x completeness, each in [0, 1] "
+             "(README, marker_detection)");
   }
 
   void declare_ports(PortSet& ports) override {
-    ports.input<StereoFramePtr>("frame", "stereo images, 8-bit grey or BGR, both the same size");
+    ports.one_of_inputs<StereoFramePtr>("images", "frame", "stereo images, 8-bit grey or BGR, both the same size");
+    ports.one_of_inputs<CameraImagePtr>("images", "image",
+                                        "one camera's image (a single-camera sensor), 8-bit grey or BGR");
     ports.output<MarkerSetPtr>("markers", "sub-pixel marker centres per view (id -1, quality in [0, 1]); "
-                                          "matches empty");
+                                          "matches empty; from `image`: its view only");
   }
 
   void on_configure(RunContext&) override {
@@ -67,14 +79,27 @@ class MarkerDetection final : public Stage {
     o.background_window_px = background_window_px_;
     o.min_fill = min_fill_;
     o.max_elongation = max_elongation_;
-    detector_.emplace(o);  // checks the options (ParameterError)
+    o.border = border_;
+    o.min_quality = min_quality_;
+    stereo_.emplace(o);  // checks the options (ParameterError)
+    one_camera_.emplace(o);
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
-    const auto& frame = io.input<StereoFramePtr>("frame");
-    auto markers = std::make_shared<MarkerSet>(detector_->detect(frame, "frame"));
-    ctx.metric("markers_left", static_cast<double>(markers->left.size()), "markers");
-    ctx.metric("markers_right", static_cast<double>(markers->right.size()), "markers");
+    std::shared_ptr<MarkerSet> markers;
+    if (const auto* frame = io.optional_input<StereoFramePtr>("frame")) {
+      markers = std::make_shared<MarkerSet>(stereo_->detect(*frame, "frame"));
+    } else {
+      const auto& image = io.input<CameraImagePtr>("image");
+      if (!image) throw InputError("input 'image': no camera image (null)");
+      markers = std::make_shared<MarkerSet>();
+      markers->views = {image->view};
+      markers->of(image->view) = one_camera_->detect(image->image, "input 'image'");
+      markers->timestamp_s = image->timestamp_s;
+    }
+    for (const CameraView view : markers->views)
+      ctx.metric(std::string("markers_") + camera_view_name(view), static_cast<double>(markers->of(view).size()),
+                 "markers");
     io.output<MarkerSetPtr>("markers", std::move(markers));
   }
 };
@@ -82,4 +107,4 @@ class MarkerDetection final : public Stage {
 }  // namespace touchcloud
 
 TOUCHCLOUD_PLUGIN(touchcloud::MarkerDetection, "marker_detection",
-                  "Finds marker dots with sub-pixel centres in both images of a stereo frame")
+                  "Finds marker dots with sub-pixel centres in both images of a stereo frame, or in one camera's image")

@@ -49,6 +49,10 @@ class MarkerMatching final : public Stage {
   void on_process(StageIO& io, RunContext&) override {
     const auto& in = io.input<MarkerSetPtr>("markers");
     if (!in) throw InputError("input 'markers' is empty");
+    if (!in->stereo())
+      throw InputError(std::string("input 'markers' holds one camera's markers (view ") +
+                       camera_view_name(in->views.at(0)) +
+                       "); marker_matching pairs the left and right views of a stereo frame");
     auto out = std::make_shared<MarkerSet>(tracker_->process(*in));
     const std::size_t matched = out->matches.size();
     fewest_matched_ = std::min(fewest_matched_, matched);

@@ -17,10 +17,11 @@ namespace touchcloud::test {
 class StageHarness {
  public:
   // Loads `plugin` (search path plus the test plugins) and sets `params`
-  // (absolute paths for files); does not configure yet.
+  // (absolute paths for files); does not configure yet. `settings` gives a
+  // writer its staging folder.
   StageHarness(const std::string& plugin, const std::map<std::string, ParamValue>& params,
-               const std::string& stage_id = "stage")
-      : registry_(test_registry()), stage_(registry_.load(plugin).create()), ctx_(stage_id, 0, record_) {
+               const std::string& stage_id = "stage", RunSettings settings = {})
+      : registry_(test_registry()), stage_(registry_.load(plugin).create()), ctx_(stage_id, 0, record_, settings) {
     stage_->declare(params_, ports_);
     for (const auto& [name, value] : params) params_.assign(name, value);
   }
@@ -39,6 +40,7 @@ class StageHarness {
   }
 
   void finish() { stage_->finish(ctx_); }
+  const RunRecord& record() const { return record_; }
   // The last value of this stage's metric `name`.
   double metric(const std::string& name) const { return record_.metrics.at(ctx_key(name)).values.back(); }
 

@@ -33,21 +33,31 @@ struct PortSpec {
   std::string type;  // data-type name
   std::string doc;
   bool optional = false;  // inputs only: the stage runs without it
+  // Inputs only: the group of inputs this one belongs to, of which a pipeline
+  // wires exactly one (empty: none).
+  std::string one_of;
 };
 
 class PortSet {
  public:
   template <class T>
   void input(std::string name, std::string doc) {
-    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false});
+    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false, {}});
   }
   template <class T>
   void optional_input(std::string name, std::string doc) {
-    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), true});
+    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), true, {}});
+  }
+  // An input of `group`, inputs of which a pipeline wires exactly one (a
+  // stereo frame, or one camera's image); validation checks it. The stage
+  // reads it as an optional input.
+  template <class T>
+  void one_of_inputs(std::string group, std::string name, std::string doc) {
+    inputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), true, std::move(group)});
   }
   template <class T>
   void output(std::string name, std::string doc) {
-    outputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false});
+    outputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false, {}});
   }
   const std::vector<PortSpec>& inputs() const { return inputs_; }
   const std::vector<PortSpec>& outputs() const { return outputs_; }

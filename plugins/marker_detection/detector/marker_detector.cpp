@@ -36,15 +36,22 @@ constexpr int kMaxDotsInClump = 6;
 // depends on blur; the image's own round, compact blobs calibrate it.
 constexpr double kRoundElongation = 1.25;
 constexpr double kDefaultSingleDotInk = 0.85;
+// A cut dot's completeness when the image has no whole round dot to compare.
+constexpr double kUnknownCompleteness = 0.5;
 
 struct Blob {
   cv::Rect box;
   int area;
+  bool cut;          // touches the image border: a dot cut by it
   DotWindow window;  // box and margin, inside the image
   DotMoments moments;
   int extent() const { return std::max(box.width, box.height); }
   double fill() const { return static_cast<double>(area) / box.area(); }
 };
+
+bool touches_border(const cv::Rect& box, cv::Size image) {
+  return box.x == 0 || box.y == 0 || box.x + box.width == image.width || box.y + box.height == image.height;
+}
 
 double median(std::vector<double> values, double fallback) {
   if (values.empty()) return fallback;
@@ -68,6 +75,7 @@ void MarkerDetectorOptions::check() const {
                                                      number_text(max_diameter_px) + " px), or 0 for automatic");
   if (!(min_fill >= 0 && min_fill <= 1)) throw ParameterError("min_fill", "must be in [0, 1]");
   if (!(max_elongation >= 1)) throw ParameterError("max_elongation", "must be >= 1");
+  if (!(min_quality >= 0 && min_quality <= 1)) throw ParameterError("min_quality", "must be in [0, 1]");
 }
 
 int MarkerDetectorOptions::background_window() const {
@@ -111,31 +119,53 @@ std::vector<Marker> MarkerDetector::measure_blobs(const cv::Mat& grey) const {
                                       kWeightFloorOfThreshold * options_.contrast_grey};
   std::vector<Blob> candidates;
   candidates.reserve(blobs_.blobs().size());
-  std::vector<double> single_ink;
+  std::vector<double> single_ink, single_area;
+  // A dot's ink over its contrast above the weight floor: about its area in
+  // px, whatever the lighting.
+  auto ink_area = [&](const DotMoments& m) { return m.ink / std::max(1.0, m.peak_grey - levels.weight_floor_grey); };
   for (const marker_detection::MaskBlob& mb : blobs_.blobs()) {
-    Blob b{mb.box, mb.area, {}, {}};
+    Blob b{mb.box, mb.area, touches_border(mb.box, size), {}, {}};
     if (b.extent() < min_extent || b.extent() > 3 * max_extent || b.area > kMaxDotsInClump * max_area) continue;
+    if (b.cut && options_.border == BorderDots::Drop) continue;
     constexpr int m = kWindowMarginPx;
     b.window = marker_detection::fit_window(cv::Rect(b.box.x - m, b.box.y - m, b.box.width + 2 * m, b.box.height + 2 * m), size);
     b.moments = marker_detection::measure_dot(grey, dark, b.window, b.box, levels);
     if (!(b.moments.ink > 0)) continue;
-    if (b.extent() <= max_extent && b.moments.elongation() <= kRoundElongation && !b.moments.clipped)
+    if (b.extent() <= max_extent && b.moments.elongation() <= kRoundElongation && !b.moments.clipped) {
       single_ink.push_back(b.moments.dots_by_ink());
+      single_area.push_back(ink_area(b.moments));
+    }
     candidates.push_back(b);
   }
   const double ink_per_dot = std::clamp(median(single_ink, kDefaultSingleDotInk), 0.4, 1.2);
+  const double whole_dot_area = median(single_area, 0.0);  // 0: no whole dot to compare with
 
   std::vector<Marker> markers;
   markers.reserve(candidates.size());
-  auto quality = [&](const DotMoments& m, double shape) {
-    // Clear contrast and a dot-like shape; a dot cut by the border is less sure.
+  auto quality = [&](const DotMoments& m, double shape, double completeness) {
+    // marker_detector.hpp defines it.
     return std::min(1.0, m.peak_grey / (4 * options_.contrast_grey)) * std::clamp(shape, 0.0, 1.0) *
-           (m.clipped ? 0.5 : 1.0);
+           std::clamp(completeness, 0.0, 1.0);
+  };
+  // A cut dot's share of a whole one; without a whole dot to compare, half.
+  auto completeness = [&](const DotMoments& m) {
+    return whole_dot_area > 0 ? ink_area(m) / whole_dot_area : kUnknownCompleteness;
+  };
+  auto keep = [&](const Eigen::Vector2d& centre, double q) {
+    if (q >= options_.min_quality) markers.push_back({centre, -1, q});
   };
   auto inside_box = [](const Eigen::Vector2d& p, const cv::Rect& box) {
     return p.x() >= box.x - 1 && p.x() <= box.x + box.width && p.y() >= box.y - 1 && p.y() <= box.y + box.height;
   };
   for (const Blob& b : candidates) {
+    if (b.cut) {
+      // One marker at most: the ink of a cut dot is narrow across the cut,
+      // which would read as several dots; its shape is the cut's, not the dot's.
+      if (b.extent() > max_extent || b.area > max_area || b.fill() < options_.min_fill) continue;
+      if (!inside_box(b.moments.centre_px, b.box)) continue;
+      keep(b.moments.centre_px, quality(b.moments, b.fill() / kDiscFill, completeness(b.moments)));
+      continue;
+    }
     const long dots = std::max(1l, std::lround(b.moments.dots_by_ink() / ink_per_dot));
     if (dots == 1) {
       if (b.extent() > max_extent || b.area > max_area || b.fill() < options_.min_fill ||
@@ -143,12 +173,12 @@ std::vector<Marker> MarkerDetector::measure_blobs(const cv::Mat& grey) const {
         continue;
       const DotMoments& m = b.moments;
       if (!inside_box(m.centre_px, b.box)) continue;
-      markers.push_back({m.centre_px, -1, quality(m, b.fill() / kDiscFill)});
+      keep(m.centre_px, quality(m, b.fill() / kDiscFill, 1.0));
     } else if (dots <= kMaxDotsInClump) {
       const int n = static_cast<int>(dots);
       for (const DotMoments& m : marker_detection::split_clump(grey, dark, b.window, b.box, levels, b.moments, n)) {
         if (!(m.ink > 0) || m.elongation() > options_.max_elongation || !inside_box(m.centre_px, b.box)) continue;
-        markers.push_back({m.centre_px, -1, 0.5 * quality(m, 1.0)});  // a share of a clump: less sure
+        keep(m.centre_px, 0.5 * quality(m, 1.0, 1.0));  // a share of a clump: less sure
       }
     }
   }

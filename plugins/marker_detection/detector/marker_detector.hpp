@@ -13,6 +13,20 @@
 //               is split by weighted k-means
 //   centre      contrast-weighted centroid over a window around the blob,
 //               the window's rim giving the local zero of contrast
+//   border      a blob that touches the image border is a dot cut by it:
+//               one marker (never split, its centre the centroid of what is
+//               visible) or none, as `border` says
+//
+// Quality, in [0, 1], is the product of three shares:
+//   contrast      min(1, peak contrast / (4 x contrast_grey)): 1 for a dot
+//                 that stands four thresholds clear of its background
+//   shape         min(1, blob fill / a disc's fill (pi / 4)): 1 for a dot
+//                 that fills its bounding box as a disc does
+//   completeness  1 for a dot wholly inside the image; for one cut by the
+//                 border, its ink over that of a whole dot (the median of the
+//                 image's round dots), at most 1
+// and halved for each dot of a split clump (its share of the ink is less
+// sure). `min_quality` drops markers below it.
 //
 // A detector reuses its scratch images between calls: use one per thread.
 #pragma once
@@ -29,6 +43,7 @@
 namespace touchcloud {
 
 enum class MarkerPolarity { Dark, Bright };  // dots darker or brighter than the gel around them
+enum class BorderDots { Keep, Drop };         // a dot cut by the image border: one marker, or none
 
 struct MarkerDetectorOptions {
   MarkerPolarity polarity = MarkerPolarity::Dark;
@@ -38,6 +53,8 @@ struct MarkerDetectorOptions {
   int background_window_px = 0;   // closing/opening window; 0: max_diameter_px + 3, made odd
   double min_fill = 0.5;          // blob area / bounding-box area (a disc fills 0.785)
   double max_elongation = 2.0;    // longest / shortest principal axis of a dot's contrast (a disc: 1)
+  BorderDots border = BorderDots::Keep;
+  double min_quality = 0.0;       // markers of lower quality (see above) are dropped
 
   // Throws ParameterError naming the option when a value breaks its rule.
   void check() const;

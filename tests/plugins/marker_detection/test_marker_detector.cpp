@@ -61,12 +61,40 @@ TEST(MarkerDetector, OverlappingDotsAreSplitAndTooSmallOrLargeBlobsDropped) {
   EXPECT_TRUE(mid_sized.detect(dots_image({{{40, 30}, 15}}, 100, 80)).empty());
 }
 
-TEST(MarkerDetector, ADotCutByTheBorderIsLessSure) {
-  MarkerDetector detector{MarkerDetectorOptions{}};
-  const auto found = detector.detect(dots_image({{{2.0, 30.0}, 3.0}, {{40.0, 30.0}, 3.0}}));
-  ASSERT_EQ(found.size(), 2u);
-  EXPECT_LE(found[0].quality, 0.5);  // the one at x = 2 comes first
+TEST(MarkerDetector, ADotCutByTheBorderIsOneMarkerOrNone) {
+  // Half of the dot at x = 0 lies outside the image.
+  const cv::Mat image = dots_image({{{0.0, 30.0}, 4.0}, {{40.0, 30.0}, 4.0}});
+  MarkerDetector keep{MarkerDetectorOptions{}};
+  const auto found = keep.detect(image);
+  ASSERT_EQ(found.size(), 2u);  // not split in two: its ink is narrow across the cut
+  EXPECT_LT(found[0].centre_px.x(), 3.0);  // the one at x = 0 comes first, at its visible half's centroid
+  EXPECT_NEAR(found[0].quality, 0.5, 0.15);  // completeness: half a dot
   EXPECT_GT(found[1].quality, 0.9);
+  MarkerDetectorOptions o;
+  o.border = BorderDots::Drop;
+  const auto dropped = MarkerDetector(o).detect(image);
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_LT((dropped[0].centre_px - Eigen::Vector2d(40, 30)).norm(), 0.05);
+}
+
+TEST(MarkerDetector, QualityIsContrastShapeAndCompletenessAndMinQualityDrops) {
+  // Flat light (200): a dark dot (40: contrast 160, over 4 thresholds of 30)
+  // and a faint one (160: contrast 40, 4/3 of a threshold).
+  touch_simulator::RenderStyle flat;
+  flat.vignetting = 0, flat.gradient = 0;
+  const cv::Mat dark = touch_simulator::MarkerRenderer(80, 60, flat).render({{{20.0, 30.0}, 4.0}});
+  flat.marker_grey = 160;
+  const cv::Mat image = cv::min(dark, touch_simulator::MarkerRenderer(80, 60, flat).render({{{55.0, 30.0}, 4.0}}));
+  MarkerDetector detector{MarkerDetectorOptions{}};
+  const auto found = detector.detect(image);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_GT(found[0].quality, 0.9);                       // clear, round, whole
+  EXPECT_NEAR(found[1].quality, 40.0 / 120.0, 0.05);      // contrast share 40 / (4 x 30)
+  MarkerDetectorOptions o;
+  o.min_quality = 0.5;
+  const auto sure = MarkerDetector(o).detect(image);
+  ASSERT_EQ(sure.size(), 1u);
+  EXPECT_EQ(sure[0].centre_px, found[0].centre_px);
 }
 
 TEST(MarkerDetector, ColourImagesAreReadAsGrey) {
@@ -103,6 +131,8 @@ TEST(MarkerDetector, OptionsThatBreakTheirRulesNameTheParameter) {
   EXPECT_EQ(parameter_of(o), "background_window_px");
   o = {}, o.max_elongation = 0.5;
   EXPECT_EQ(parameter_of(o), "max_elongation");
+  o = {}, o.min_quality = 1.5;
+  EXPECT_EQ(parameter_of(o), "min_quality");
   EXPECT_EQ(parameter_of(MarkerDetectorOptions{}), "");
   EXPECT_EQ(MarkerDetectorOptions{}.background_window(), 15);
 }

@@ -122,6 +122,25 @@ TEST(MarkerMatchingStage, AReferenceFrameWithoutMarkersIsNamed) {
   }
 }
 
+// A one-camera set (detection on one image) has no pairs to find; without
+// the check the error did not say so (this test failed).
+TEST(MarkerMatchingStage, OneCamerasMarkersAreRefusedByName) {
+  TempDir dir;
+  const auto scene_file = write_scene(dir, "[]");
+  test::StageHarness stage("marker_matching", {{"sensor", scene_file.string()}});
+  stage.configure();
+  auto mono = std::make_shared<MarkerSet>();
+  mono->views = {CameraView::Mono};
+  mono->mono.push_back({{600, 300}, -1, 1});
+  try {
+    stage.process({{"markers", std::any(MarkerSetPtr(mono))}}, {"markers"});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("input 'markers' holds one camera's markers (view mono)"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(MarkerMatchingStage, ASensorFileThatDoesNotFitTheImagesIsNamed) {
   // The markers come from a sensor with a 30 mm baseline; the stage is told
   // 40 mm, so no prediction lands near a right marker.

@@ -1,4 +1,5 @@
-// Markers found in the two views of a stereo frame, and their pairing.
+// Markers found in the two views of a stereo frame, and their pairing; or in
+// one camera's image.
 #pragma once
 
 #include <memory>
@@ -7,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "touchcloud/ports.hpp"
+#include "touchcloud/types/camera_view.hpp"
 
 namespace touchcloud {
 
@@ -22,9 +24,21 @@ struct MarkerMatch {
 };
 
 struct MarkerSet {
-  std::vector<Marker> left, right;
-  std::vector<MarkerMatch> matches;
+  std::vector<Marker> left, right;   // the views of a stereo frame, or one camera of it
+  std::vector<Marker> mono;          // the camera of a single-camera sensor
+  std::vector<MarkerMatch> matches;  // stereo sets only
   double timestamp_s = 0;
+  // The views this set holds, in order: left and right from a stereo frame,
+  // the camera's own view from one camera's image. The other lists stay empty.
+  std::vector<CameraView> views{CameraView::Left, CameraView::Right};
+
+  bool stereo() const { return views.size() == 2; }
+  std::vector<Marker>& of(CameraView view) {
+    return view == CameraView::Left ? left : view == CameraView::Right ? right : mono;
+  }
+  const std::vector<Marker>& of(CameraView view) const {
+    return view == CameraView::Left ? left : view == CameraView::Right ? right : mono;
+  }
 };
 using MarkerSetPtr = std::shared_ptr<const MarkerSet>;
 

@@ -5,7 +5,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   const auto& file = touchcloud::fuzz::input_file(data, size, ".yaml");
   try {
-    touchcloud::sim::load_scene(file);
+    touchcloud::touch_simulator::load_scene(file);
   } catch (const touchcloud::InputError&) {
   }
   return 0;

@@ -47,3 +47,14 @@ TEST(FuzzRegressions, ObjThatOverflowedAHeapBuffer) {
   ASSERT_EQ(mesh.triangles.size(), 1u);
   EXPECT_EQ(mesh.triangles[0], (std::array<std::uint32_t, 3>{0, 2, 3}));
 }
+
+// A TYPE line with NUL bytes among its entries (and SIZE 2 for a float)
+// corrupted PCL's heap inside readHeader (an ASan CHECK in fuzz_pcd): the
+// header is now refused before PCL parses it.
+TEST(FuzzRegressions, PcdHeaderWithNulBytesInItsTypeLine) {
+  const fs::path file = kCorpus / "fuzz_pcd/crash-nul-in-type-line.pcd";
+  const std::string msg = input_error(file, [](const fs::path& f) { read_cloud_file(f); });
+  EXPECT_NE(msg.find("crash-nul-in-type-line.pcd is not a readable pcd point cloud: line 5: a control character"),
+            std::string::npos)
+      << msg;
+}

@@ -71,29 +71,64 @@ void check_ascii_body(const fs::path& file, std::string_view body, std::size_t f
 
 void check_pcd_file(const fs::path& file) {
   const std::string bytes = ply::read_whole_file(file);
-  // The header, as far as the counts go; a malformed one is left to PCL,
-  // which refuses it.
+  // The header: its lines are text, and FIELDS, SIZE, TYPE and COUNT agree,
+  // before PCL's readHeader sees it (a TYPE line with NUL bytes among its
+  // entries corrupted PCL's heap: fuzz_pcd); then the counts.
+  const auto bad_header = [&](std::size_t line, const std::string& why) {
+    throw InputError(file.string() + " is not a readable pcd point cloud: line " + std::to_string(line) + ": " + why);
+  };
   std::uint64_t width = 0, height = 1, declared = 0, step = 0, values = 0;
   std::vector<std::uint64_t> sizes, counts;
+  std::vector<std::string> types;
+  std::size_t fields = 0, control_line = 0;
   std::string data;
   std::size_t at = 0, line_number = 0;
   while (at < bytes.size() && data.empty()) {
     std::size_t end = bytes.find('\n', at);
     if (end == std::string::npos) end = bytes.size();
-    std::istringstream words(bytes.substr(at, end - at));
+    const std::string line = bytes.substr(at, end - at);
     at = end + 1;
     ++line_number;
+    std::istringstream words(line);
     std::string key;
     if (!(words >> key) || key[0] == '#') continue;
+    if (!control_line && std::any_of(line.begin(), line.end(), [](unsigned char c) { return c < 0x20 && c != '\t' && c != '\r'; }))
+      control_line = line_number;
     std::uint64_t n = 0;
+    std::string word;
     if (key == "WIDTH") words >> width;
     else if (key == "HEIGHT") words >> height;
     else if (key == "POINTS") words >> declared;
+    else if (key == "FIELDS" || key == "COLUMNS") while (words >> word) ++fields;
     else if (key == "SIZE") while (words >> n) sizes.push_back(n);
+    else if (key == "TYPE") while (words >> word) types.push_back(word);
     else if (key == "COUNT") while (words >> n) counts.push_back(n);
     else if (key == "DATA") words >> data;
   }
-  if (data.empty() || sizes.empty()) return;
+  // A PCD header (FIELDS or DATA) with a control character is refused here;
+  // a file that is no PCD at all is left to PCL's "no valid header".
+  if (control_line && (fields > 0 || !data.empty()))
+    bad_header(control_line, "a control character (a NUL byte?) in the header");
+  if (data.empty()) return;
+  if (data != "ascii" && data != "binary" && data != "binary_compressed")
+    bad_header(line_number, "DATA must be ascii, binary or binary_compressed");
+  const auto agree = [&](std::size_t given, const char* what) {
+    if (given != fields)
+      bad_header(line_number, std::string(what) + " has " + std::to_string(given) + " entries for " +
+                                  std::to_string(fields) + " FIELDS");
+  };
+  agree(sizes.size(), "SIZE");
+  agree(types.size(), "TYPE");
+  if (!counts.empty()) agree(counts.size(), "COUNT");
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    const bool known = types[k] == "F" ? (sizes[k] == 4 || sizes[k] == 8)
+                       : (types[k] == "I" || types[k] == "U")
+                           ? (sizes[k] == 1 || sizes[k] == 2 || sizes[k] == 4 || sizes[k] == 8)
+                           : false;
+    if (!known) bad_header(line_number, "field " + std::to_string(k + 1) + " has TYPE '" + types[k] + "' and SIZE " +
+                                            std::to_string(sizes[k]) + " (F: 4 or 8; I, U: 1, 2, 4 or 8)");
+  }
+  if (sizes.empty()) return;
   if (counts.empty()) counts.assign(sizes.size(), 1);
   for (std::size_t k = 0; k < sizes.size() && k < counts.size(); ++k) {
     if (sizes[k] > 8 || counts[k] > (1u << 20)) return;  // PCL refuses these

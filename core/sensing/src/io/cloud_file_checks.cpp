@@ -81,6 +81,19 @@ void check_pcd_file(const fs::path& file) {
   std::vector<std::uint64_t> sizes, counts;
   std::vector<std::string> types;
   std::size_t fields = 0, control_line = 0;
+  // Entries as digits only: istream reads "-16" into an unsigned as 2^64 - 16,
+  // and PCL then allocated 12 GB for such a COUNT (fuzz_pcd).
+  const auto whole_numbers = [&](std::istringstream& line, std::vector<std::uint64_t>& out, const char* what,
+                                 std::size_t at_line) {
+    std::string token;
+    while (line >> token) {
+      std::uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+      if (ec != std::errc() || end != token.data() + token.size() || v > (1u << 20))
+        bad_header(at_line, std::string(what) + " entries must be whole numbers up to 2^20");
+      out.push_back(v);
+    }
+  };
   std::string data;
   std::size_t at = 0, line_number = 0;
   while (at < bytes.size() && data.empty()) {
@@ -100,9 +113,9 @@ void check_pcd_file(const fs::path& file) {
     else if (key == "HEIGHT") words >> height;
     else if (key == "POINTS") words >> declared;
     else if (key == "FIELDS" || key == "COLUMNS") while (words >> word) ++fields;
-    else if (key == "SIZE") while (words >> n) sizes.push_back(n);
+    else if (key == "SIZE") whole_numbers(words, sizes, "SIZE", line_number);
     else if (key == "TYPE") while (words >> word) types.push_back(word);
-    else if (key == "COUNT") while (words >> n) counts.push_back(n);
+    else if (key == "COUNT") whole_numbers(words, counts, "COUNT", line_number);
     else if (key == "DATA") words >> data;
   }
   // A PCD header (FIELDS or DATA) with a control character is refused here;
@@ -131,7 +144,7 @@ void check_pcd_file(const fs::path& file) {
   if (sizes.empty()) return;
   if (counts.empty()) counts.assign(sizes.size(), 1);
   for (std::size_t k = 0; k < sizes.size() && k < counts.size(); ++k) {
-    if (sizes[k] > 8 || counts[k] > (1u << 20)) return;  // PCL refuses these
+    if (sizes[k] > 8) return;  // PCL refuses these
     step += sizes[k] * counts[k];
     values += counts[k];
   }

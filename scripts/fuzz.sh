@@ -25,7 +25,10 @@ for t in "${targets[@]}"; do
   echo "== $t: ${seconds} s" >&2
   # -timeout: an input that takes 10 s is a hang; -rss_limit_mb: so is one
   # that takes 2 GB.
+  # -seed: the same inputs in the same order on every run (TOUCHCLOUD_FUZZ_SEED
+  # to explore others), so a short CI run does not fail by chance.
   if ! "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -timeout=10 \
+      -seed="${TOUCHCLOUD_FUZZ_SEED:-1}" \
       -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$build/crashes/$t-" -print_final_stats=1 \
       2>"$build/$t.log"; then
     failed+=("$t")

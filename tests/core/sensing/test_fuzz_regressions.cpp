@@ -67,3 +67,11 @@ TEST(FuzzRegressions, PcdHeaderWithANegativeCount) {
             std::string::npos)
       << msg;
 }
+
+// "DATAUNT" is a DATA line to PCL (it matches keys by their first letters),
+// and SIZE 0 with no TYPE then overflowed a buffer in fromPCLPointCloud2.
+TEST(FuzzRegressions, PcdHeaderWhoseDataKeyHasATail) {
+  const fs::path file = kCorpus / "fuzz_pcd/crash-data-key-prefix.pcd";
+  const std::string msg = input_error(file, [](const fs::path& f) { read_cloud_file(f); });
+  EXPECT_NE(msg.find("crash-data-key-prefix.pcd is not a readable pcd point cloud: line "), std::string::npos) << msg;
+}

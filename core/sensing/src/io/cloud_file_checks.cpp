@@ -107,16 +107,20 @@ void check_pcd_file(const fs::path& file) {
     if (!(words >> key) || key[0] == '#') continue;
     if (!control_line && std::any_of(line.begin(), line.end(), [](unsigned char c) { return c < 0x20 && c != '\t' && c != '\r'; }))
       control_line = line_number;
-    std::uint64_t n = 0;
     std::string word;
-    if (key == "WIDTH") words >> width;
-    else if (key == "HEIGHT") words >> height;
-    else if (key == "POINTS") words >> declared;
-    else if (key == "FIELDS" || key == "COLUMNS") while (words >> word) ++fields;
-    else if (key == "SIZE") whole_numbers(words, sizes, "SIZE", line_number);
-    else if (key == "TYPE") while (words >> word) types.push_back(word);
-    else if (key == "COUNT") whole_numbers(words, counts, "COUNT", line_number);
-    else if (key == "DATA") words >> data;
+    // PCL matches a key by its first letters ("DATAUNT" is DATA): so do we.
+    const auto is = [&](const char* k) { return key.rfind(k, 0) == 0; };
+    if (is("WIDTH")) words >> width;
+    else if (is("HEIGHT")) words >> height;
+    else if (is("POINTS")) words >> declared;
+    else if (is("FIELDS") || is("COLUMNS")) while (words >> word) ++fields;
+    else if (is("SIZE")) whole_numbers(words, sizes, "SIZE", line_number);
+    else if (is("TYPE")) while (words >> word) types.push_back(word);
+    else if (is("COUNT")) whole_numbers(words, counts, "COUNT", line_number);
+    else if (is("DATA")) {
+      words >> data;
+      if (data.empty()) data = "?";  // a DATA line without its kind
+    }
   }
   // A PCD header (FIELDS or DATA) with a control character is refused here;
   // a file that is no PCD at all is left to PCL's "no valid header".

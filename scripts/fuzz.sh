@@ -11,6 +11,11 @@ seconds=${1:-600}
 build=${TOUCHCLOUD_FUZZ_BUILD_DIR:-build-fuzz}
 scripts/install-deps.sh --fuzz
 targets=(fuzz_pipeline fuzz_scene fuzz_pcd fuzz_ply_cloud fuzz_ply_mesh fuzz_stl fuzz_obj)
+# TOUCHCLOUD_FUZZ_SKIP="a b": targets not run (CI skips one with an open find).
+for skip in ${TOUCHCLOUD_FUZZ_SKIP:-}; do
+  targets=("${targets[@]/$skip}")
+done
+targets=(${targets[@]})
 if [ ! -f "$build/build.ninja" ]; then
   cmake -S . -B "$build" -G Ninja -DTOUCHCLOUD_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null

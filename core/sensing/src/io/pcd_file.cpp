@@ -190,8 +190,8 @@ const Field& axis_field(const fs::path& file, const Header& h, const char* axis)
   throw InputError(file.string() + " has no '" + axis + "' field; a point cloud needs x, y and z");
 }
 
-void read_ascii(const fs::path& file, const Header& h, std::string_view body, const std::array<std::size_t, 3>& column,
-                PointCloud& cloud) {
+void read_ascii(const fs::path& file, const Header& h, std::string_view body, const std::array<const Field*, 3>& axes,
+                const std::array<std::size_t, 3>& column, PointCloud& cloud) {
   if (h.points > (body.size() + 1) / (2 * std::max<std::size_t>(h.values, 1)))
     too_many(file, h.points, "its " + std::to_string(body.size()) + " data bytes can hold");
   cloud.reserve(h.points);
@@ -214,8 +214,14 @@ void read_ascii(const fs::path& file, const Header& h, std::string_view body, co
       if (r.ec != std::errc() || r.ptr != words[k].data() + words[k].size())
         throw InputError(where + "'" + std::string(words[k].substr(0, 40)) + "' is not a number (" + point + ")");
     }
-    cloud.push_back(pcl::PointXYZ(static_cast<float>(row[column[0]]), static_cast<float>(row[column[1]]),
-                                  static_cast<float>(row[column[2]])));
+    // A float field is parsed as a float: double then float can round twice.
+    float xyz[3];
+    for (int a = 0; a < 3; ++a) {
+      const std::string_view word = words[column[a]];
+      xyz[a] = static_cast<float>(row[column[a]]);
+      if (axes[a]->type == 'F' && axes[a]->size == 4) std::from_chars(word.data(), word.data() + word.size(), xyz[a]);
+    }
+    cloud.push_back(pcl::PointXYZ(xyz[0], xyz[1], xyz[2]));
   }
   if (cloud.size() != h.points)
     throw InputError(unreadable(file) + ": its header declares " + std::to_string(h.points) + " points but the file holds " +
@@ -258,7 +264,7 @@ PointCloud read_xyz(const fs::path& file) {
   const std::string_view body = std::string_view(bytes).substr(h.body_offset);
   PointCloud cloud;
   if (h.data == Data::Ascii) {
-    read_ascii(file, h, body, column, cloud);
+    read_ascii(file, h, body, axes, column, cloud);
   } else if (h.data == Data::Binary) {
     if (h.points > body.size() / h.step) too_many(file, h.points, "its " + std::to_string(body.size()) + " data bytes hold");
     read_packed(h, body.data(), 0, axes, cloud);

@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "touchcloud/error.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -37,6 +39,15 @@ std::string read_file(const fs::path& file) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+std::string input_error_of(const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
 }
 
 PluginRegistry test_registry() {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ class TempDir {
 
 void write_file(const std::filesystem::path& file, const std::string& text);
 std::string read_file(const std::filesystem::path& file);
+
+// The message of the InputError `read` throws, or "(no InputError)".
+std::string input_error_of(const std::function<void()>& read);
 
 // The default search path plus the folder of test-only plugins.
 PluginRegistry test_registry();

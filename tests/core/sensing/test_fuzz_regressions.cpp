@@ -15,12 +15,7 @@ const fs::path kCorpus = test::source_dir() / "fuzz/corpus";
 
 template <class F>
 std::string input_error(const fs::path& file, F&& read) {
-  try {
-    read(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(read without error)";
+  return test::input_error_of([&] { read(file); });
 }
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <pcl/io/lzf.h>
 
 #include "io/ply_header.hpp"
+#include "io/text_words.hpp"
 #include "touchcloud/error.hpp"
 
 namespace fs = std::filesystem;
@@ -18,21 +19,11 @@ namespace touchcloud::pcd {
 
 namespace {
 
+using io_text::words_of;
+
 constexpr std::uint64_t kMaxEntry = 1u << 20;  // SIZE, COUNT: nothing real comes near
 
 std::string unreadable(const fs::path& file) { return file.string() + " is not a readable pcd point cloud"; }
-
-std::vector<std::string_view> words_of(std::string_view line) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) words.push_back(line.substr(start, i - start));
-  }
-  return words;
-}
 
 // Digits only: istream reads "-16" into an unsigned as 2^64 - 16, and PCL
 // then allocated 12 GB for such a COUNT (fuzz_pcd).

@@ -1,4 +1,5 @@
 #include "io/ply_header.hpp"
+#include "io/text_words.hpp"
 #include "touchcloud/path_text.hpp"
 
 #include <charconv>
@@ -13,6 +14,8 @@ namespace touchcloud::ply {
 
 namespace {
 
+using io_text::words_of;
+
 bool parse_scalar(std::string_view word, Scalar& out) {
   static const std::pair<std::string_view, Scalar> names[] = {
       {"char", Scalar::Int8},     {"int8", Scalar::Int8},       {"uchar", Scalar::Uint8},   {"uint8", Scalar::Uint8},
@@ -25,18 +28,6 @@ bool parse_scalar(std::string_view word, Scalar& out) {
       return true;
     }
   return false;
-}
-
-std::vector<std::string_view> words_of(std::string_view line) {
-  std::vector<std::string_view> words;
-  std::size_t at = 0;
-  while (at < line.size()) {
-    while (at < line.size() && (line[at] == ' ' || line[at] == '\t' || line[at] == '\r')) ++at;
-    const std::size_t start = at;
-    while (at < line.size() && line[at] != ' ' && line[at] != '\t' && line[at] != '\r') ++at;
-    if (at > start) words.push_back(line.substr(start, at - start));
-  }
-  return words;
 }
 
 // The fewest bytes one row of `e` can take: fixed sizes and list lengths in

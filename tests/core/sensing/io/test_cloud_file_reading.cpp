@@ -17,12 +17,7 @@ std::string pcd_header(const std::string& data, std::uint64_t width, std::uint64
 }
 
 std::string read_error(const fs::path& file) {
-  try {
-    read_cloud_file(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(read without error)";
+  return test::input_error_of([&] { read_cloud_file(file); });
 }
 
 }  // namespace

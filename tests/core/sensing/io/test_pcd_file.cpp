@@ -14,12 +14,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string read_error(const fs::path& file) {
-  try {
-    read_cloud_file(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(read without error)";
+  return test::input_error_of([&] { read_cloud_file(file); });
 }
 
 // 7 x 3 organised cloud with colour and normals, so x, y, z are neither the

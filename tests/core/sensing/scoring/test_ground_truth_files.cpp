@@ -41,14 +41,6 @@ void expect_sampled_square(const scoring::GroundTruth& gt) {
   }
 }
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
 
 }  // namespace
 
@@ -123,20 +115,20 @@ TEST(GroundTruthFiles, BrokenMeshesAreRefusedByName) {
              "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
   write_file(dir / "flat.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n");
   for (const char* name : {"garbage.stl", "empty.obj", "points_only.obj", "bad_index.ply", "flat.obj", "missing.stl"}) {
-    const std::string m = message_of([&] { scoring::load_ground_truth(dir / name); });
+    const std::string m = test::input_error_of([&] { scoring::load_ground_truth(dir / name); });
     EXPECT_NE(m.find(name), std::string::npos) << name << ": " << m;
   }
-  EXPECT_NE(message_of([&] { scoring::load_ground_truth(dir / "flat.obj"); }).find("no surface area"), std::string::npos);
-  EXPECT_NE(message_of([&] { scoring::read_ground_truth(dir / "flat.obj"); }).find("flat.obj: the mesh has no surface area"),
+  EXPECT_NE(test::input_error_of([&] { scoring::load_ground_truth(dir / "flat.obj"); }).find("no surface area"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { scoring::read_ground_truth(dir / "flat.obj"); }).find("flat.obj: the mesh has no surface area"),
             std::string::npos);
-  EXPECT_NE(message_of([&] { scoring::load_ground_truth(dir / "points_only.obj"); }).find("no triangles"),
+  EXPECT_NE(test::input_error_of([&] { scoring::load_ground_truth(dir / "points_only.obj"); }).find("no triangles"),
             std::string::npos);
 }
 
 TEST(GroundTruthFiles, EstimatesMustHoldFinitePoints) {
   test::TempDir dir;
   write_file(dir / "empty.pcd", "");
-  EXPECT_NE(message_of([&] { scoring::read_estimate(dir / "empty.pcd"); }).find("empty.pcd"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { scoring::read_estimate(dir / "empty.pcd"); }).find("empty.pcd"), std::string::npos);
   PointCloud with_nan = test::grid_cloud(2, 1.0);
   with_nan.push_back(pcl::PointXYZ(std::nanf(""), 0, 0));
   test::save_pcd(dir / "nan.pcd", with_nan);

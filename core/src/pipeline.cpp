@@ -42,4 +42,11 @@ std::map<std::string, std::map<std::string, ParamValue>> Pipeline::parameters() 
   return out;
 }
 
+std::vector<std::string> Pipeline::wired_outputs() const {
+  std::vector<std::string> out;
+  for (const auto* s : impl_->stages)
+    for (const auto& port : s->wanted_outputs) out.push_back(s->id + "." + port);
+  return out;
+}
+
 }  // namespace touchcloud

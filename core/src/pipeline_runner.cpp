@@ -3,6 +3,7 @@
 // Background stages get their calls (configure included) queued to one
 // worker thread; their outputs are futures, which a reader waits for.
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <optional>
@@ -52,6 +53,7 @@ class Runner {
     OutputStaging staging(options_.out_dir);
     RunRecord& record = pipeline_.record;
     record = RunRecord{};
+    want_captured_outputs();
     const RunSettings settings{staging.dir(), options_.quiet};
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
@@ -79,9 +81,13 @@ class Runner {
     for (auto* l : pipeline_.loops) result.loop_iterations.emplace_back(l->id, l->iterations_run);
     result.wall_time_s = seconds_since(t0);
     result.load_time_s = pipeline_.load_time_s;
+    for (const auto& key : options_.capture)
+      if (auto it = values_.find(key); it != values_.end())
+        if (std::optional<std::any> v = resolve(it->second); v && v->has_value()) result.captured[key] = std::move(*v);
+    result.summary_json = make_summary(pipeline_, result, options_).dump(2) + "\n";
     if (!options_.out_dir.empty()) {
       auto files = record.outputs;
-      write_file(staging.dir() / "summary.json", make_summary(pipeline_, result, options_).dump(2) + "\n");
+      write_file(staging.dir() / "summary.json", result.summary_json);
       files.push_back("summary.json");
       staging.commit(files);
     }
@@ -89,6 +95,23 @@ class Runner {
   }
 
  private:
+  // RunOptions::capture: known outputs, produced as if a stage read them.
+  void want_captured_outputs() {
+    for (const auto& key : options_.capture) {
+      const auto dot = key.rfind('.');
+      const std::string id = key.substr(0, dot), port = dot == std::string::npos ? "" : key.substr(dot + 1);
+      const auto stage = std::find_if(pipeline_.stages.begin(), pipeline_.stages.end(), [&](auto* s) { return s->id == id; });
+      if (stage == pipeline_.stages.end()) throw InputError("capture '" + key + "': the pipeline has no stage '" + id + "'");
+      if (!(*stage)->ports->find_output(port)) {
+        std::string names;
+        for (const auto& o : (*stage)->ports->outputs()) names += (names.empty() ? "" : ", ") + o.name;
+        throw InputError("capture '" + key + "': stage '" + id + "' has no output '" + port + "' (its outputs: " +
+                         (names.empty() ? "none" : names) + ")");
+      }
+      (*stage)->wanted_outputs.insert(port);
+    }
+  }
+
   void run_nodes(std::vector<ResolvedNode>& nodes) {
     for (auto& n : nodes) {
       if (n.stage) run_stage(*n.stage);

@@ -18,6 +18,7 @@
 //                                     # the value from the previous iteration
 #pragma once
 
+#include <any>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -60,6 +61,9 @@ class Pipeline {
   const std::filesystem::path& file() const;
   // Every stage id and its resolved parameters ("id" -> "param" -> value).
   std::map<std::string, std::map<std::string, ParamValue>> parameters() const;
+  // Every output ("stage.port") that some stage or a loop's `until` reads:
+  // what a run computes anyway, so capturing it costs nothing extra.
+  std::vector<std::string> wired_outputs() const;
 
 
  private:
@@ -72,6 +76,10 @@ struct RunOptions {
   std::uint64_t seed = 0;
   std::filesystem::path out_dir;  // empty: write no files (outputs are refused)
   bool quiet = false;
+  // Outputs ("stage.port") to hand back in RunResult::captured, for callers
+  // that embed the runtime (the Python module); each is produced even when
+  // no stage reads it. InputError for a stage or port the pipeline lacks.
+  std::vector<std::string> capture;
 };
 
 struct StageTiming {
@@ -89,6 +97,10 @@ struct RunResult {
   // stage's checks (which may read and index data files).
   double load_time_s = 0;
   std::vector<std::pair<std::string, int>> loop_iterations;  // loop id, iterations run
+  // RunOptions::capture's outputs, last value each (inside a loop: of the
+  // last iteration); an output the stage did not produce is absent.
+  std::map<std::string, std::any> captured;
+  std::string summary_json;  // what summary.json holds (also without out_dir)
 };
 
 // Runs a loaded pipeline. Outputs go to a staging folder inside out_dir and

@@ -1,0 +1,141 @@
+#include <cstdlib>
+#include <filesystem>
+
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "touchcloud/pipeline.hpp"
+#include "touchcloud/plugin_json.hpp"
+#include "value_arrays.hpp"
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+
+namespace touchcloud::python {
+
+namespace {
+
+// A Python value as the YAML text `--set` takes: True -> true, [1, 2] -> [1, 2].
+std::string yaml_text(const py::handle& v) {
+  if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    std::string text = "[";
+    for (const auto& item : v) text += (text.size() > 1 ? ", " : "") + yaml_text(item);
+    return text + "]";
+  }
+  return py::repr(v).cast<std::string>();  // numbers: Python's shortest exact form
+}
+
+std::vector<Override> overrides_of(const py::dict& set) {
+  std::vector<Override> out;
+  for (const auto& [key, value] : set) out.push_back({key.cast<std::string>(), yaml_text(value), "set="});
+  return out;
+}
+
+Pipeline load(const std::string& file, const py::dict& set) {
+  try {
+    return Pipeline::load(file, overrides_of(set), registry());
+  } catch (const InputError& e) {
+    throw PipelineLoadError(e);
+  }
+}
+
+// A folder that a run without `out` writes into and that goes with it.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    std::string pattern = (fs::temp_directory_path() / "touchcloud-python-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw RunError("cannot make a temporary folder in " + fs::temp_directory_path().string());
+    path_ = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+struct Result {
+  py::dict metrics, outputs, times;
+  std::vector<std::string> without_python_form;  // wired outputs left out of `outputs` (a plugin's own types)
+  py::object summary;
+  std::string out;  // the output folder, "" when the run wrote to a scratch folder
+};
+
+Result run(const std::string& file, std::uint64_t seed, const py::dict& set, const std::optional<std::string>& out,
+           const std::optional<std::vector<std::string>>& outputs, bool quiet) {
+  Pipeline pipeline = load(file, set);
+  RunOptions options;
+  options.seed = seed;
+  options.quiet = quiet;
+  options.capture = outputs ? *outputs : pipeline.wired_outputs();
+  std::optional<ScratchFolder> scratch;
+  if (!out) scratch.emplace();
+  options.out_dir = out ? fs::path(*out) : scratch->path();
+  RunResult r;
+  {
+    py::gil_scoped_release unlocked;  // other Python threads run meanwhile
+    r = run_pipeline(pipeline, options);
+  }
+  Result result;
+  for (const auto& [name, series] : r.record.metrics)
+    result.metrics[py::str(name)] =
+        py::dict(py::arg("value") = series.values.back(), py::arg("unit") = series.unit, py::arg("series") = series.values);
+  for (const auto& [key, value] : r.captured) {
+    try {
+      result.outputs[py::str(key)] = to_python(key, value);
+    } catch (const py::type_error&) {
+      if (outputs) throw;  // asked for by name
+      result.without_python_form.push_back(key);
+    }
+  }
+  result.summary = py::module_::import("json").attr("loads")(r.summary_json);
+  py::dict stages;
+  for (const auto& t : r.timings)
+    stages[py::str(t.id)] = py::dict(py::arg("plugin") = t.plugin, py::arg("check_s") = t.check_s,
+                                     py::arg("configure_s") = t.configure_s, py::arg("process_s") = t.process_s,
+                                     py::arg("finish_s") = t.finish_s, py::arg("calls") = t.calls);
+  result.times = py::dict(py::arg("wall_s") = r.wall_time_s, py::arg("load_s") = r.load_time_s, py::arg("stages") = stages);
+  result.out = out ? *out : "";
+  return result;
+}
+
+py::object json_value(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+}  // namespace
+
+void bind_run(py::module_& m) {
+  py::class_<Result>(m, "Result", "What a run gives back")
+      .def_readonly("metrics", &Result::metrics, "name -> {value, unit, series}: the last value and one per loop pass")
+      .def_readonly("outputs", &Result::outputs, "'stage.port' -> value: clouds as N x 3 float32 arrays in mm, ...")
+      .def_readonly("summary", &Result::summary, "the same dict as summary.json")
+      .def_readonly("times", &Result::times, "wall_s, load_s and per stage check/configure/process/finish seconds")
+      .def_readonly("without_python_form", &Result::without_python_form,
+                    "wired outputs of types with no Python form (a plugin's own), left out of outputs")
+      .def_readonly("out", &Result::out, "the output folder ('' when out was None)")
+      .def("__repr__", [](const Result& r) { return "<touchcloud.Result: " + std::to_string(r.metrics.size()) + " metrics, " + std::to_string(r.outputs.size()) + " outputs>"; });
+  m.def("run", &run, py::arg("pipeline"), py::kw_only(), py::arg("seed") = 0, py::arg("set") = py::dict(),
+        py::arg("out") = py::none(), py::arg("outputs") = py::none(), py::arg("quiet") = true,
+        "Runs a pipeline file as `touchcloud run` does. set: {'stage.param': value} overrides; out: output folder "
+        "(None: files go to a temporary folder removed afterwards); outputs: 'stage.port' names to return (None: "
+        "every output some stage reads).");
+  m.def(
+      "validate", [](const std::string& file, const py::dict& set) { load(file, set); }, py::arg("pipeline"),
+      py::kw_only(), py::arg("set") = py::dict(),
+      "Loads and checks a pipeline as `touchcloud validate` does; raises PipelineError with every problem found.");
+  m.def(
+      "plugins",
+      [](const std::optional<std::string>& name) -> py::object {
+        if (name) return json_value(plugin_json(registry().load(*name)));
+        py::list all;
+        for (const auto& n : registry().available()) all.append(json_value(plugin_json(registry().load(n))));
+        return all;
+      },
+      py::arg("name") = py::none(), "The plugins on the search path as `touchcloud plugins --json` lists them (one dict per plugin).");
+}
+
+}  // namespace touchcloud::python

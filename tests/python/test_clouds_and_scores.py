@@ -1,0 +1,46 @@
+"""touchcloud.read_cloud / write_cloud / score on clouds made here."""
+import numpy as np
+import pytest
+
+import touchcloud
+
+
+def grid(n, z=0.0):
+    x, y = np.meshgrid(np.arange(n, dtype=np.float32), np.arange(n, dtype=np.float32))
+    return np.column_stack([x.ravel(), y.ravel(), np.full(n * n, z, dtype=np.float32)])
+
+
+@pytest.mark.parametrize("name,binary", [("a.pcd", True), ("a.pcd", False), ("a.ply", True), ("a.ply", False)])
+def test_clouds_round_trip(tmp_path, name, binary):
+    points = grid(7) + np.float32(0.125)
+    touchcloud.write_cloud(str(tmp_path / name), points, binary=binary)
+    back = touchcloud.read_cloud(str(tmp_path / name))
+    np.testing.assert_array_equal(back, points)
+    assert not back.flags.writeable
+
+
+def test_bad_clouds_are_errors_naming_the_file(tmp_path):
+    with pytest.raises(ValueError, match="N x 3"):
+        touchcloud.write_cloud(str(tmp_path / "x.pcd"), np.zeros((4, 2)))
+    with pytest.raises(ValueError, match="point 1 is not finite"):
+        touchcloud.write_cloud(str(tmp_path / "x.pcd"), np.array([[0, 0, 0], [np.nan, 0, 0]]))
+    (tmp_path / "bad.pcd").write_text("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nDATA ascii\n1 2 3\nhello 2 3\n")
+    with pytest.raises(touchcloud.InputError, match=r"bad.pcd:7: 'hello' is not a number"):
+        touchcloud.read_cloud(str(tmp_path / "bad.pcd"))
+    assert not (tmp_path / "x.pcd").exists()
+
+
+def test_score_gives_one_row_per_estimate_and_goes_on_past_a_bad_one(tmp_path):
+    touchcloud.write_cloud(str(tmp_path / "gt.pcd"), grid(20))
+    touchcloud.write_cloud(str(tmp_path / "same.pcd"), grid(20))
+    touchcloud.write_cloud(str(tmp_path / "raised.pcd"), grid(20, z=0.5))
+    (tmp_path / "broken.pcd").write_text("not a cloud\n")
+    rows = touchcloud.score(str(tmp_path / "gt.pcd"),
+                            [str(tmp_path / n) for n in ("same.pcd", "broken.pcd", "raised.pcd")])
+    assert [r["estimate"].rsplit("/", 1)[1] for r in rows] == ["same.pcd", "broken.pcd", "raised.pcd"]
+    assert rows[0]["chamfer_est_to_gt_mm"] == 0 and rows[0]["fscore"] == 1
+    assert "no valid PCD header" in rows[1]["error"]
+    assert rows[2]["chamfer_est_to_gt_mm"] == pytest.approx(0.5, abs=1e-6)
+    assert rows[2]["hausdorff_mm"] == pytest.approx(0.5, abs=1e-6)
+    with pytest.raises(touchcloud.InputError, match="missing.pcd"):
+        touchcloud.score(str(tmp_path / "missing.pcd"), [str(tmp_path / "same.pcd")])

@@ -1,0 +1,102 @@
+"""touchcloud.run / validate / plugins against the CLI on the same pipelines."""
+import json
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import touchcloud
+
+
+def test_run_matches_the_cli_bit_for_bit(source, cli, tmp_path):
+    pipeline = source / "pipelines/fox_mask_active.yaml"
+    r = touchcloud.run(str(pipeline), seed=1, set={"explore.max_iterations": 8})
+    subprocess.run([str(cli), "run", str(pipeline), "--seed", "1", "--set", "explore.max_iterations=8",
+                    "--out", str(tmp_path), "-q"], check=True, capture_output=True)
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    final = r.metrics["score.final_chamfer_mm"]
+    assert final["unit"] == "mm"
+    assert final["value"] == summary["metrics"]["score.final_chamfer_mm"]["value"]
+    chamfer = r.metrics["score.chamfer_est_to_gt"]["series"]
+    assert len(chamfer) == 8 and chamfer == summary["metrics"]["score.chamfer_est_to_gt"]["series"]
+    assert r.summary["metrics"]["score.final_chamfer_mm"]["value"] == final["value"]
+    assert r.times["wall_s"] > 0 and r.times["stages"]["fit"]["calls"] == 8
+    assert r.out == ""  # wrote to a scratch folder, gone now
+    assert r.outputs["contact.state"]["stable"] is True and r.without_python_form == []
+    target = r.outputs["plan.target"]
+    assert len(target["xy_mm"]) == 2 and target["grid_index"] >= 0
+
+
+def test_outputs_are_arrays_viewing_the_clouds(source, tmp_path):
+    r = touchcloud.run(str(source / "pipelines/downsample_cloud.yaml"), out=str(tmp_path))
+    thinned = r.outputs["thin.cloud"]
+    assert thinned.dtype == np.float32 and thinned.ndim == 2 and thinned.shape[1] == 3
+    assert not thinned.flags.writeable and thinned.base is not None  # a view, not a copy
+    assert thinned.strides == (16, 4)  # PCL's padded XYZ points, viewed in place
+    written = touchcloud.read_cloud(str(tmp_path / "gel_dome_thinned.ply"))
+    np.testing.assert_array_equal(np.sort(written, axis=0), np.sort(np.asarray(thinned), axis=0))
+    assert len(r.outputs["read.cloud"]) > len(thinned)
+
+
+def test_a_surface_answers_mean_and_variance(source):
+    pipeline = source / "pipelines/fox_mask_active.yaml"
+    r = touchcloud.run(str(pipeline), seed=1, set={"explore.max_iterations": 6}, outputs=["fit.surface", "surface.cloud"])
+    surface = r.outputs["fit.surface"]
+    cloud = np.asarray(r.outputs["surface.cloud"], dtype=float)
+    # The sampled cloud lies on the surface's mean.
+    np.testing.assert_allclose(surface.mean(cloud[:50, :2]), cloud[:50, 2], atol=1e-3)
+    assert (surface.variance(cloud[:50, :2]) >= 0).all()
+    grid = surface.grid(np.linspace(-10, 10, 5), np.linspace(-5, 5, 3))
+    assert grid.shape == (3, 5) and np.isfinite(grid).all()
+
+
+def test_unknown_outputs_are_refused_by_name(source):
+    with pytest.raises(touchcloud.InputError, match="stage 'thin' has no output 'clouds'"):
+        touchcloud.run(str(source / "pipelines/downsample_cloud.yaml"), outputs=["thin.clouds"])
+
+
+def test_a_bad_pipeline_raises_with_its_file_position(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: nowhere.pcd, colour: red}\n")
+    with pytest.raises(touchcloud.PipelineError) as e:
+        touchcloud.validate(str(bad))
+    assert f"{bad}:4:" in str(e.value) and "colour" in str(e.value)
+    assert any(d[0] == str(bad) and d[1] == 4 for d in e.value.diagnostics)
+    assert isinstance(e.value, touchcloud.Error)
+    with pytest.raises(touchcloud.PipelineError, match="nowhere.pcd"):
+        touchcloud.run(str(bad))
+
+
+def test_set_overrides_reach_the_stage(source):
+    pipeline = str(source / "pipelines/downsample_cloud.yaml")
+    coarse = touchcloud.run(pipeline, set={"thin.leaf_size_mm": 8.0}).outputs["thin.cloud"]
+    fine = touchcloud.run(pipeline, set={"thin.leaf_size_mm": 2.0}).outputs["thin.cloud"]
+    assert len(coarse) < len(fine)
+    with pytest.raises(touchcloud.PipelineError, match="leaf_size_mm"):
+        touchcloud.run(pipeline, set={"thin.leaf_size_mm": -1.0})
+
+
+def test_plugins_are_what_the_cli_lists(cli):
+    listed = json.loads(subprocess.run([str(cli), "plugins", "--json"], check=True, capture_output=True, text=True).stdout)
+    assert touchcloud.plugins() == listed
+    assert touchcloud.plugins("downsample")["name"] == "downsample"
+
+
+def test_the_gil_is_released_while_a_pipeline_runs(source):
+    ticks = 0
+    done = threading.Event()
+
+    def work():
+        try:
+            touchcloud.run(str(source / "pipelines/fox_mask_active.yaml"), seed=1, set={"explore.max_iterations": 10})
+        finally:
+            done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    while not done.is_set():
+        ticks += 1
+        done.wait(0.001)
+    t.join()
+    assert ticks > 20  # Python code ran beside the pipeline

@@ -173,6 +173,36 @@ TEST(MpiSweep, ResumeRunsOnlyWhatAStoppedSweepLeftOut) {
   EXPECT_NE(other.err.find("c.step = 9, but setting 0 of this sweep has 0.5"), std::string::npos) << other.err;
 }
 
+// mpirun ends the job when a rank dies; rank 0 names the runs lost with it,
+// and --resume runs what sweep.csv does not hold.
+TEST(MpiSweep, ARankThatDiesEndsTheJobNamingTheLostRunsAndResumeCompletesIt) {
+  SKIP_WITHOUT_MPIRUN();
+  TempDir dir;
+  write_file(dir / "p.yaml", "stages:\n  - id: c\n    plugin: test_counter\n    params: {check_ms: 300}\n"
+                             "  - id: t\n    plugin: test_throwing\n    params: {fail_at: 5}\n");
+  const auto sweep = [&](bool resume) {
+    std::vector<std::string> a = {"sweep", (dir / "p.yaml").string(), "--vary", "c.step=1,2,3", "--repeats", "2",
+                                  "--out", (dir / "sw").string(), "--accuracy", "c.value"};
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  // Rank 1 gets a run while rank 0 runs the first one (0.3 s), and dies in it.
+  const auto killed = run_on_two_ranks(sweep(false), kTestPlugins + " TOUCHCLOUD_TEST_KILL_RANK=1");
+  EXPECT_NE(killed.exit_code, 0);
+  EXPECT_NE(killed.err.find("touchcloud: error: stopped with "), std::string::npos) << killed.err;
+  EXPECT_NE(killed.err.find("lost while running: setting "), std::string::npos) << killed.err;
+  EXPECT_NE(killed.err.find(" (rank 1, "), std::string::npos) << killed.err;
+  EXPECT_NE(killed.err.find("--resume to run the others"), std::string::npos) << killed.err;
+  EXPECT_FALSE(fs::exists(dir / "sw/sweep_summary.csv")) << "the job did not finish";
+
+  const auto resumed = run_cli(sweep(true), kTestPlugins);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  std::istringstream in(read_file(dir / "sw/sweep.csv"));
+  std::size_t lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  EXPECT_EQ(lines, 1u + 6);
+}
+
 TEST(MpiScore, TwoRanksPrintWhatOneRankPrints) {
   SKIP_WITHOUT_MPIRUN();
   TempDir dir;

@@ -15,6 +15,13 @@ find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.9 REQUIRED)
 find_package(nanoflann REQUIRED)
+# MPI (Open MPI's C API): `mpirun -n N touchcloud sweep|score` spreads the
+# runs over ranks. Only core/cli/mpi_dispatch.cpp sees it.
+find_package(MPI COMPONENTS C QUIET)
+option(TOUCHCLOUD_MPI "Spread sweeps and batch scoring over MPI ranks (needs libopenmpi-dev)" ${MPI_C_FOUND})
+if(TOUCHCLOUD_MPI AND NOT MPI_C_FOUND)
+  message(FATAL_ERROR "TOUCHCLOUD_MPI=ON but no MPI was found: apt-get install libopenmpi-dev openmpi-bin")
+endif()
 
 # PCL's config exports plain variables; wrap them once in an imported target.
 if(NOT TARGET touchcloud_pcl)

@@ -9,6 +9,7 @@ packages=(
   libyaml-cpp-dev libceres-dev libflann-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev libopenblas-dev libsleef-dev
   libgtest-dev libbenchmark-dev
   python3-matplotlib python3-numpy python3-dev pybind11-dev python3-pytest
+  libopenmpi-dev openmpi-bin
 )
 # scripts/fuzz.sh: Debian's clang with its libFuzzer and sanitizer runtimes.
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi

@@ -12,6 +12,12 @@ pipelines/<object>_active.yaml with the method's overrides. Writes, into
 
 Usage (from the repository root, after building):
   benchmarks/table1/make_table1.py --out benchmarks/table1
+  benchmarks/table1/make_table1.py --out benchmarks/table1 --ranks 2   # or under mpirun / srun
+
+With --ranks N (or when started by mpirun or srun on several ranks) the runs
+spread over the ranks: each rank takes the next run no rank has claimed yet
+(an exclusive file in a folder under --out, which every rank must see), and
+rank 0 writes the same files; only the times differ.
 """
 import argparse
 import concurrent.futures
@@ -22,6 +28,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 
 # The methods of Table 1 as overrides of the "Ours" pipelines.
 METHODS = {
@@ -71,6 +78,43 @@ def run_one(args, obj, method, seed, workdir):
     }
 
 
+def launched_ranks():
+    """(rank, size) as mpirun (Open MPI) or srun (PMIx) tell it; (0, 1) alone."""
+    for rank, size in (("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"), ("PMIX_RANK", "SLURM_NTASKS")):
+        if rank in os.environ and size in os.environ:
+            return int(os.environ[rank]), int(os.environ[size])
+    return 0, 1
+
+
+def run_on_ranks(args, todo, rank, size):
+    """Every rank runs the next unclaimed run; rank 0 returns all results, the others None."""
+    job = os.environ.get("PMIX_NAMESPACE") or os.environ.get("SLURM_JOB_ID", "job")
+    shared = os.path.join(os.path.abspath(args.out), f".table1-ranks-{job}")
+    os.makedirs(shared, exist_ok=True)
+    for i, (o, m, s) in enumerate(todo):
+        try:
+            os.close(os.open(os.path.join(shared, f"claim-{i}"), os.O_CREAT | os.O_EXCL))
+        except FileExistsError:
+            continue
+        result = run_one(args, o, m, s, shared)
+        with open(os.path.join(shared, f"run-{i}.tmp{rank}"), "w") as f:
+            json.dump(result, f)
+        os.rename(os.path.join(shared, f"run-{i}.tmp{rank}"), os.path.join(shared, f"run-{i}.json"))
+        print(f"run {i + 1}/{len(todo)} on rank {rank}", file=sys.stderr, flush=True)
+    if rank != 0:
+        return None
+    # mpirun ends the job if a rank dies, so waiting for the others is safe.
+    files = [os.path.join(shared, f"run-{i}.json") for i in range(len(todo))]
+    while not all(os.path.exists(f) for f in files):
+        time.sleep(0.2)
+    runs = []
+    for f in files:
+        with open(f) as fh:
+            runs.append(json.load(fh))
+    subprocess.run(["rm", "-rf", shared], check=True)
+    return runs
+
+
 def convergence(curve, tolerance=0.05):
     """First touch (1-based) after which the curve stays within 5% of its last value."""
     final = curve[-1]
@@ -94,22 +138,37 @@ def main():
                     help="runs at a time (default 1: a run keeps two cores busy, its background stages "
                          "beside the loop, so more at once slows each and skews the run times)")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--ranks", type=int, default=1,
+                    help="MPI ranks to spread the runs over (runs this script under mpirun -n N)")
     ap.add_argument("--set", action="append", default=[], metavar="K=V",
                     help="an override for every run (e.g. explore.max_iterations=10 for a quick look)")
     args = ap.parse_args()
     if not os.path.exists(args.touchcloud):
         sys.exit(f"make_table1: no {args.touchcloud}; build first (scripts/build.sh)")
     os.makedirs(args.out, exist_ok=True)
+    rank, size = launched_ranks()
+    if args.ranks > 1 and size == 1:
+        argv = [a for i, a in enumerate(sys.argv[1:]) if a != "--ranks" and not a.startswith("--ranks=")
+                and not (i > 0 and sys.argv[i] == "--ranks")]
+        root = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+        cmd = ["mpirun", "-n", str(args.ranks), "--oversubscribe", "--bind-to", "none", *root,
+               sys.executable, os.path.abspath(__file__), *argv]
+        sys.exit(subprocess.run(cmd).returncode)
 
     runs = []
-    with tempfile.TemporaryDirectory(prefix="table1-") as workdir, \
-            concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        jobs = [pool.submit(run_one, args, o, m, s, workdir)
-                for o in OBJECTS for m in METHODS for s in range(1, args.seeds + 1)]
-        for i, job in enumerate(concurrent.futures.as_completed(jobs), 1):
-            runs.append(job.result())
-            print(f"\r{i}/{len(jobs)} runs", end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
+    todo = [(o, m, s) for o in OBJECTS for m in METHODS for s in range(1, args.seeds + 1)]
+    if size > 1:
+        runs = run_on_ranks(args, todo, rank, size)
+        if runs is None:
+            return
+    else:
+        with tempfile.TemporaryDirectory(prefix="table1-") as workdir, \
+                concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+            jobs = [pool.submit(run_one, args, o, m, s, workdir) for o, m, s in todo]
+            for i, job in enumerate(concurrent.futures.as_completed(jobs), 1):
+                runs.append(job.result())
+                print(f"\r{i}/{len(jobs)} runs", end="", file=sys.stderr, flush=True)
+        print(file=sys.stderr)
     runs.sort(key=lambda r: (list(OBJECTS).index(r["object"]), list(METHODS).index(r["method"]), r["seed"]))
 
     with open(os.path.join(args.out, "runs.csv"), "w", newline="") as f:

@@ -5,6 +5,7 @@
 #include "touchcloud/error.hpp"
 #include "touchcloud/interrupt_cleanup.hpp"
 #include "touchcloud/version.hpp"
+#include "mpi_dispatch.hpp"
 #include "verbs.hpp"
 
 namespace {
@@ -67,7 +68,8 @@ int main(int argc, char** argv) {
       if (*a) return (*a)();
     return kExitBadInput;
   } catch (const touchcloud::InputError& e) {
-    report(e);
+    // Under mpirun every rank checks the same input; rank 0 says what it found.
+    if (launched_rank() == 0) report(e);
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "touchcloud: error: " << e.what() << "\n";

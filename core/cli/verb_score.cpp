@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -16,10 +17,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mpi_dispatch.hpp"
 #include "score_inputs.hpp"
 #include "touchcloud/scoring/cloud_metrics.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
 #include "seed_option.hpp"
+#include "touchcloud/number_text.hpp"
 #include "verbs.hpp"
 
 namespace fs = std::filesystem;
@@ -47,6 +50,7 @@ struct Outcome {
   double time_s = 0;
   std::string error;
   bool bad_input = true;  // an InputError (exit 2), or a failure while scoring (exit 1)
+  RunPlace place;         // who scored it
 };
 
 // A one-line count on stderr, redrawn a few times a second, only when stderr
@@ -196,6 +200,10 @@ nlohmann::ordered_json outcome_json(const Outcome& r, const Options& o) {
   if (!r.score) {
     j["status"] = "error";
     j["error"] = r.error;
+    if (r.gt) {  // it got as far as a rank
+      j["rank"] = r.place.rank;
+      j["host"] = r.place.host;
+    }
     return j;
   }
   j["status"] = "ok";
@@ -206,6 +214,8 @@ nlohmann::ordered_json outcome_json(const Outcome& r, const Options& o) {
   j["metrics"] = metrics;
   if (r.score->metrics.fscore) j["fscore_threshold_mm"] = r.score->fscore_threshold_mm;
   j["time_s"] = r.time_s;
+  j["rank"] = r.place.rank;
+  j["host"] = r.place.host;
   return j;
 }
 
@@ -254,6 +264,111 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
   }
 }
 
+// Across the ranks of an MPI job: one estimate a job, in ground-truth order,
+// so that each rank samples and indexes a ground truth once for its run of
+// estimates of it, and reads its estimates itself (only scores travel).
+// Each rank's threads share the host's cores with the other ranks there.
+nlohmann::json encode(const Outcome& r, const GroundTruthSummary& g) {
+  const auto num = [](double v) { return number_text(v); };  // every bit, NaN too
+  nlohmann::json j = {{"error", r.error}, {"bad_input", r.bad_input}, {"dropped", r.dropped_nonfinite},
+                      {"time", num(r.time_s)}};
+  j["gt"] = {{"file", g.file},       {"kind", g.kind},          {"points", g.points},
+             {"triangles", g.triangles}, {"dropped", g.dropped_nonfinite}, {"area", num(g.area_mm2)},
+             {"spacing", num(g.spacing_mm)}, {"load_time", num(g.load_time_s)}, {"error", g.error}};
+  if (r.score) {
+    nlohmann::json s = {{"estimate_points", r.score->estimate_points},
+                        {"ground_truth_points", r.score->ground_truth_points},
+                        {"fscore_threshold_mm", num(r.score->fscore_threshold_mm)}};
+    for (const auto& m : scoring::metric_names()) s[m.name] = num((*r.score).*m.value);
+    j["score"] = s;
+  }
+  return j;
+}
+
+void decode(const nlohmann::json& j, Outcome& r, GroundTruthSummary& g, const scoring::ScoreOptions& options) {
+  const auto num = [](const nlohmann::json& v) { return std::strtod(v.get<std::string>().c_str(), nullptr); };
+  r.error = j.at("error").get<std::string>();
+  r.bad_input = j.at("bad_input").get<bool>();
+  r.dropped_nonfinite = j.at("dropped").get<std::size_t>();
+  r.time_s = num(j.at("time"));
+  if (g.file.empty()) {  // the first report of this ground truth
+    const auto& t = j.at("gt");
+    g.file = t.at("file").get<std::string>();
+    g.kind = t.at("kind").get<std::string>();
+    g.points = t.at("points").get<std::size_t>();
+    g.triangles = t.at("triangles").get<std::size_t>();
+    g.dropped_nonfinite = t.at("dropped").get<std::size_t>();
+    g.area_mm2 = num(t.at("area"));
+    g.spacing_mm = num(t.at("spacing"));
+    g.load_time_s = num(t.at("load_time"));
+    g.error = t.at("error").get<std::string>();
+  }
+  if (j.contains("score")) {
+    const auto& s = j.at("score");
+    scoring::CloudScore score;
+    score.metrics = options.metrics;
+    score.estimate_points = s.at("estimate_points").get<std::size_t>();
+    score.ground_truth_points = s.at("ground_truth_points").get<std::size_t>();
+    score.fscore_threshold_mm = num(s.at("fscore_threshold_mm"));
+    for (const auto& m : scoring::metric_names()) score.*m.value = num(s.at(m.name));
+    r.score = score;
+  }
+}
+
+void score_on_ranks(RankTeam& team, std::vector<Outcome>& outcomes, const std::vector<std::string>& gt_order,
+                    std::map<std::string, std::vector<Outcome*>>& groups,
+                    std::map<std::string, GroundTruthSummary>& summaries, scoring::ScoreOptions options,
+                    const Options& o, Progress& progress) {
+  const int threads = o.threads > 0 ? o.threads
+                                    : std::max(1, scoring::resolve_threads(0) / team.ranks_on_host());
+  options.threads = threads;
+  std::vector<std::size_t> jobs;
+  for (const auto& file : gt_order)
+    for (Outcome* r : groups[file]) jobs.push_back(static_cast<std::size_t>(r - outcomes.data()));
+
+  // The ground truth this rank loaded last, kept for the next estimates of it.
+  std::optional<std::string> loaded_file;
+  std::optional<scoring::GroundTruth> loaded;
+  GroundTruthSummary loaded_summary;
+  const auto work = [&](std::size_t i) {
+    Outcome r;
+    r.pair = outcomes[i].pair;
+    const std::string& file = r.pair.ground_truth;
+    try {
+      if (loaded_file != file) {
+        loaded.reset();
+        loaded_summary = GroundTruthSummary{};
+        loaded_file = file;
+        try {
+          loaded = load(file, o, threads, loaded_summary);
+        } catch (const InputError& e) {
+          loaded_summary.file = file;
+          loaded_summary.error = e.what();
+        }
+      }
+      if (loaded)
+        score_one(r, *loaded, options, o);
+      else
+        r.error = "ground truth " + loaded_summary.error;
+    } catch (const std::exception& e) {  // as score_one: a failure while scoring
+      r.error = r.pair.estimate + ": " + e.what();
+      r.bad_input = false;
+    }
+    return encode(r, loaded_summary).dump();
+  };
+  const auto finished = [&](std::size_t i, const RunPlace& place, const std::string& row) {
+    Outcome& r = outcomes[i];
+    GroundTruthSummary& g = summaries[r.pair.ground_truth];
+    decode(nlohmann::json::parse(row), r, g, options);
+    r.gt = &g;
+    r.place = place;
+    progress.done_one();
+  };
+  const auto describe = [&](std::size_t i) { return outcomes[i].pair.estimate; };
+  const auto on_stop = [] { return std::string("nothing was printed; run the same command again"); };
+  team.run(jobs, work, finished, describe, on_stop);
+}
+
 int run_score(const Options& o) {
   if (o.fscore_threshold_mm <= 0)
     throw InputError("--fscore-threshold must be > 0 mm, not " + format_fixed(o.fscore_threshold_mm, 3));
@@ -269,6 +384,8 @@ int run_score(const Options& o) {
     r.error = p.error;
     outcomes.push_back(std::move(r));
   }
+  RankTeam team;  // under mpirun: the estimates spread over its ranks
+  for (auto& r : outcomes) r.place = RunPlace{0, team.host()};
 
   // Group by ground truth, in order of first use; each is loaded once and
   // dropped before the next.
@@ -284,28 +401,36 @@ int run_score(const Options& o) {
   Progress progress(outcomes.size());
   for (const auto& r : outcomes)
     if (!r.error.empty()) progress.done_one();
-  for (const auto& file : gt_order) {
-    GroundTruthSummary& summary = summaries[file];
-    gts.push_back(&summary);
-    progress.stage("loading ground truth " + file);
-    std::optional<scoring::GroundTruth> gt;
-    try {
-      gt = load(file, o, threads, summary);
-    } catch (const InputError& e) {
-      // The one ground truth of the command line is the whole input: stop.
-      if (file == o.gt) throw;
-      summary.error = e.what();
-    }
-    for (Outcome* r : groups[file]) r->gt = &summary;
-    if (!gt) {
-      for (Outcome* r : groups[file]) {
-        r->error = "ground truth " + summary.error;
-        progress.done_one();
+  if (team.size() > 1) {
+    for (const auto& file : gt_order) gts.push_back(&summaries[file]);
+    score_on_ranks(team, outcomes, gt_order, groups, summaries, options, o, progress);
+    if (team.rank() != 0) return kExitOk;  // rank 0 prints every result
+    // The one ground truth of the command line is the whole input: stop.
+    if (summaries.count(o.gt) && !summaries[o.gt].error.empty()) throw InputError(summaries[o.gt].error);
+  } else {
+    for (const auto& file : gt_order) {
+      GroundTruthSummary& summary = summaries[file];
+      gts.push_back(&summary);
+      progress.stage("loading ground truth " + file);
+      std::optional<scoring::GroundTruth> gt;
+      try {
+        gt = load(file, o, threads, summary);
+      } catch (const InputError& e) {
+        // The one ground truth of the command line is the whole input: stop.
+        if (file == o.gt) throw;
+        summary.error = e.what();
       }
-      continue;
+      for (Outcome* r : groups[file]) r->gt = &summary;
+      if (!gt) {
+        for (Outcome* r : groups[file]) {
+          r->error = "ground truth " + summary.error;
+          progress.done_one();
+        }
+        continue;
+      }
+      progress.stage("");
+      score_group(groups[file], *gt, options, o, threads, progress);
     }
-    progress.stage("");
-    score_group(groups[file], *gt, options, o, threads, progress);
   }
 
   progress.finish();

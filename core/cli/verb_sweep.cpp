@@ -4,14 +4,17 @@
 // plots accuracy against time with the Pareto front marked.
 #include <unistd.h>
 
-#include <cmath>
+#include <atomic>
+#include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <set>
+#include <map>
 #include <sstream>
 
+#include "mpi_dispatch.hpp"
 #include "sweep_grid.hpp"
+#include "sweep_rows.hpp"
 #include "touchcloud/pipeline.hpp"
 #include "seed_option.hpp"
 #include "touchcloud/file_write.hpp"
@@ -22,23 +25,6 @@ namespace fs = std::filesystem;
 namespace touchcloud::cli {
 
 namespace {
-
-struct RunRow {
-  std::size_t setting = 0;
-  std::uint64_t seed = 0;
-  double wall_time_s = 0;
-  std::map<std::string, double> stage_time_s;  // process + configure + finish per stage
-  std::map<std::string, double> metrics;       // final value of each metric
-};
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string number(double v) { return format_value(ParamValue(v)); }
 
 // Writes `text` to `file` through a temporary name, so a reader never sees half a file.
 void write_atomically(const fs::path& file, const std::string& text) {
@@ -58,64 +44,11 @@ fs::path plot_script() {
   return exe.parent_path().parent_path() / "share/touchcloud/plot_sweep.py";
 }
 
-std::string csv_table(const std::vector<SweepAxis>& axes, const std::vector<std::vector<Override>>& settings,
-                      const std::vector<RunRow>& rows, bool aggregate) {
-  std::set<std::string> stages, metrics;
-  for (const auto& r : rows) {
-    for (const auto& [k, v] : r.stage_time_s) stages.insert(k);
-    for (const auto& [k, v] : r.metrics) metrics.insert(k);
-  }
-  std::ostringstream out;
-  out << "setting";
-  for (const auto& a : axes) out << "," << csv_field(a.key);
-  out << (aggregate ? ",runs" : ",seed") << ",wall_time_s";
-  if (aggregate) out << ",wall_time_s_std";
-  for (const auto& s : stages) out << ",time_" << s << "_s";
-  for (const auto& m : metrics) out << "," << m << (aggregate ? "," + m + "_std" : "");
-  out << "\n";
-
-  const auto row_out = [&](std::size_t setting, const std::vector<const RunRow*>& group) {
-    const auto mean_std = [&](auto get) {
-      double sum = 0, sq = 0;
-      for (const auto* r : group) sum += get(*r);
-      const double mean = sum / static_cast<double>(group.size());
-      for (const auto* r : group) sq += (get(*r) - mean) * (get(*r) - mean);
-      return std::make_pair(mean, group.size() > 1 ? std::sqrt(sq / static_cast<double>(group.size() - 1)) : 0.0);
-    };
-    out << setting;
-    for (const auto& o : settings[setting]) out << "," << csv_field(o.value);
-    out << "," << (aggregate ? std::to_string(group.size()) : std::to_string(group[0]->seed));
-    const auto wall = mean_std([](const RunRow& r) { return r.wall_time_s; });
-    out << "," << number(wall.first);
-    if (aggregate) out << "," << number(wall.second);
-    for (const auto& s : stages) out << "," << number(mean_std([&](const RunRow& r) {
-                                   auto it = r.stage_time_s.find(s);
-                                   return it == r.stage_time_s.end() ? 0.0 : it->second;
-                                 }).first);
-    for (const auto& m : metrics) {
-      bool all = true;
-      for (const auto* r : group) all = all && r->metrics.count(m);
-      if (!all) {
-        out << "," << (aggregate ? "," : "");
-        continue;
-      }
-      const auto ms = mean_std([&](const RunRow& r) { return r.metrics.at(m); });
-      out << "," << number(ms.first);
-      if (aggregate) out << "," << number(ms.second);
-    }
-    out << "\n";
-  };
-  if (!aggregate) {
-    for (const auto& r : rows) row_out(r.setting, {&r});
-  } else {
-    for (std::size_t s = 0; s < settings.size(); ++s) {
-      std::vector<const RunRow*> group;
-      for (const auto& r : rows)
-        if (r.setting == s) group.push_back(&r);
-      if (!group.empty()) row_out(s, group);
-    }
-  }
-  return out.str();
+// One line, for a CSV cell and a progress line.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
 }
 
 }  // namespace
@@ -126,6 +59,7 @@ Action* add_sweep_verb(CLI::App& app) {
     std::vector<std::string> vary, sets;
     int repeats = 1;
     std::uint64_t seed = 0;
+    bool resume = false;
   };
   static Options o;
   static Action action;
@@ -137,6 +71,8 @@ Action* add_sweep_verb(CLI::App& app) {
       ->check(CLI::Range(1, 1000))->capture_default_str();
   cmd->add_option("--seed", o.seed, "seed of the first repeat")->check(seed_value())->capture_default_str();
   cmd->add_option("--out", o.out, "output folder: sweep.csv, sweep_summary.csv, the plot, runs/")->required();
+  cmd->add_flag("--resume", o.resume,
+                "keep the successful runs an earlier, stopped sweep left in DIR/sweep.csv and run only the others");
   cmd->add_option("--accuracy", o.accuracy,
                   "metric plotted as accuracy, lower is better (default: the first metric whose name has 'chamfer')");
   cmd->add_option("--time", o.time, "column plotted as time (wall_time_s or time_STAGE_s)")->capture_default_str();
@@ -157,47 +93,126 @@ Action* add_sweep_verb(CLI::App& app) {
       for (auto& s : settings) s.erase(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(fixed.size()));
 
       const fs::path out = o.out;
-      fs::create_directories(out / "runs");
-      std::vector<RunRow> rows;
-      const std::size_t total = settings.size() * static_cast<std::size_t>(o.repeats);
-      for (std::size_t s = 0; s < settings.size(); ++s) {
-        for (int r = 0; r < o.repeats; ++r) {
+      const std::size_t repeats = static_cast<std::size_t>(o.repeats), total = settings.size() * repeats;
+      // Run `job` is setting job / repeats with seed o.seed + job % repeats: the order of sweep.csv.
+      const auto seed_of = [&](std::size_t job) { return o.seed + static_cast<std::uint64_t>(job % repeats); };
+      const auto describe = [&](std::size_t job) {
+        return "setting " + std::to_string(job / repeats) + " seed " + std::to_string(seed_of(job));
+      };
+
+      // --resume: the runs sweep.csv already holds (successful ones) are not run again.
+      std::map<std::size_t, RunRow> rows;
+      if (o.resume && launched_rank() == 0 && fs::exists(out / "sweep.csv"))
+        for (auto& row : read_sweep_csv(out / "sweep.csv", axes, settings)) {
+          if (row.seed < o.seed || row.seed - o.seed >= repeats)
+            throw InputError("--resume: seed " + std::to_string(row.seed) + " is not one of this sweep's (" +
+                             std::to_string(o.seed) + " to " + std::to_string(o.seed + repeats - 1) + ")",
+                             {(out / "sweep.csv").string()});
+          if (row.error.empty()) rows[row.setting * repeats + (row.seed - o.seed)] = std::move(row);
+        }
+      const std::size_t resumed = rows.size();
+      std::vector<std::size_t> jobs;
+      for (std::size_t job = 0; job < total; ++job)
+        if (!rows.count(job)) jobs.push_back(job);
+
+      // Any rank runs any job; its row comes back to rank 0.
+      const auto work = [&](std::size_t job) {
+        RunRow row;
+        row.setting = job / repeats;
+        row.seed = seed_of(job);
+        try {
           auto overrides = fixed;
-          overrides.insert(overrides.end(), settings[s].begin(), settings[s].end());
+          overrides.insert(overrides.end(), settings[row.setting].begin(), settings[row.setting].end());
           PluginRegistry registry;
           Pipeline p = Pipeline::load(o.pipeline, overrides, registry);
           RunOptions options;
-          options.seed = o.seed + static_cast<std::uint64_t>(r);
-          options.out_dir = out / "runs" / ("setting" + std::to_string(s) + "_seed" + std::to_string(options.seed));
+          options.seed = row.seed;
+          options.out_dir = out / "runs" / ("setting" + std::to_string(row.setting) + "_seed" + std::to_string(row.seed));
           options.quiet = true;
           const RunResult result = run_pipeline(p, options);
-          RunRow row{s, options.seed, result.wall_time_s, {}, {}};
+          row.wall_time_s = result.wall_time_s;
           for (const auto& t : result.timings) row.stage_time_s[t.id] = t.configure_s + t.process_s + t.finish_s;
           for (const auto& [name, series] : result.record.metrics) row.metrics[name] = series.values.back();
-          rows.push_back(row);
-          std::cerr << "[" << rows.size() << "/" << total << "]";
-          for (const auto& ov : settings[s]) std::cerr << " " << ov.key << "=" << ov.value;
-          std::cerr << " seed " << options.seed << ": " << std::fixed << std::setprecision(3) << result.wall_time_s
-                    << " s\n" << std::defaultfloat;
+        } catch (const std::exception& e) {
+          row.error = one_line(e.what());
+          if (row.error.empty()) row.error = "failed";
         }
-      }
-      write_atomically(out / "sweep.csv", csv_table(axes, settings, rows, false));
-      write_atomically(out / "sweep_summary.csv", csv_table(axes, settings, rows, true));
-      std::cout << "wrote " << (out / "sweep.csv").string() << " (" << rows.size() << " runs) and "
-                << (out / "sweep_summary.csv").string() << "\n";
+        return serialise(row);
+      };
 
+      RankTeam team;
+      if (team.rank() == 0) fs::create_directories(out / "runs");
+      // Rank 0 saves what is complete (atomically, at most once a second), so
+      // a job stopped half way leaves a sweep.csv that --resume completes.
+      const auto table = [&] {
+        std::vector<RunRow> ordered;
+        for (const auto& [job, row] : rows) ordered.push_back(row);
+        return ordered;
+      };
+      std::atomic<std::size_t> saved{resumed};  // read by the stop message, from rank 0's dispatch thread
+      auto last_save = std::chrono::steady_clock::now();
+      const auto finished = [&](std::size_t job, const RunPlace& place, const std::string& text) {
+        RunRow row = deserialise(text);
+        row.rank = place.rank;
+        row.host = place.host;
+        std::cerr << "[" << rows.size() + 1 << "/" << total << "]";
+        for (const auto& ov : settings[row.setting]) std::cerr << " " << ov.key << "=" << ov.value;
+        std::cerr << " seed " << row.seed << ": ";
+        if (row.error.empty())
+          std::cerr << std::fixed << std::setprecision(3) << row.wall_time_s << " s" << std::defaultfloat;
+        else
+          std::cerr << "failed: " << row.error;
+        std::cerr << (team.size() > 1 ? " (rank " + std::to_string(place.rank) + ")" : "") << "\n";
+        rows[job] = std::move(row);
+        if (std::chrono::steady_clock::now() - last_save > std::chrono::seconds(1)) {
+          write_atomically(out / "sweep.csv", csv_table(axes, settings, table(), false));
+          saved = rows.size();
+          last_save = std::chrono::steady_clock::now();
+        }
+      };
+      const auto on_stop = [&] {
+        return (out / "sweep.csv").string() + " holds " + std::to_string(saved) +
+               " finished runs; run the same command with --resume to run the others";
+      };
+      team.run(jobs, work, finished, describe, on_stop);
+      if (team.rank() != 0) return kExitOk;  // rank 0 writes every output
+
+      const std::vector<RunRow> all = table();
+      write_atomically(out / "sweep.csv", csv_table(axes, settings, all, false));
+      write_atomically(out / "sweep_summary.csv", csv_table(axes, settings, all, true));
+      std::cout << "wrote " << (out / "sweep.csv").string() << " (" << all.size() << " runs";
+      if (resumed > 0) std::cout << ", " << resumed << " of them from before (--resume)";
+      std::cout << ") and " << (out / "sweep_summary.csv").string() << "\n";
+      std::vector<const RunRow*> failed;
+      for (const auto& r : all)
+        if (!r.error.empty()) failed.push_back(&r);
+      const RunRow* first_ok = nullptr;
+      for (const auto& r : all)
+        if (r.error.empty() && !first_ok) first_ok = &r;
+
+      // A failed run is a row with its error, the others go on; the exit status says so.
+      const auto status = [&] {
+        for (const auto* r : failed)
+          std::cerr << "touchcloud: error: " << describe(r->setting * repeats + (r->seed - o.seed)) << ": " << r->error
+                    << "\n";
+        if (failed.empty()) return kExitOk;
+        std::cerr << "touchcloud: error: " << failed.size() << " of " << all.size()
+                  << " runs failed (their rows in sweep.csv say why); the rest ran\n";
+        return kExitRunFailed;
+      };
+      if (!first_ok) return status();
       std::string accuracy = o.accuracy;
       if (accuracy.empty())
-        for (const auto& [name, v] : rows.front().metrics)
+        for (const auto& [name, v] : first_ok->metrics)
           if (name.find("chamfer") != std::string::npos) {
             accuracy = name;
             break;
           }
       if (accuracy.empty()) {
         std::cout << "no plot: no metric has 'chamfer' in its name; choose one with --accuracy\n";
-        return kExitOk;
+        return status();
       }
-      if (!rows.front().metrics.count(accuracy))
+      if (!first_ok->metrics.count(accuracy))
         throw InputError("--accuracy " + accuracy + ": the pipeline reports no such metric");
       const fs::path script = plot_script();
       const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + (out / "sweep_summary.csv").string() +
@@ -208,7 +223,7 @@ Action* add_sweep_verb(CLI::App& app) {
       else
         std::cout << "plotted " << accuracy << " against " << o.time << ": " << (out / "accuracy_vs_time.png").string()
                   << " and .svg\n";
-      return kExitOk;
+      return status();
     };
   });
   return &action;

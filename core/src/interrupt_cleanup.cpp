@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <signal.h>
 
+#include <iostream>
 #include <set>
 #include <thread>
 
@@ -23,6 +24,10 @@ std::set<fs::path>& folders() {
   static std::set<fs::path> f;
   return f;
 }
+std::string& message() {
+  static std::string m;
+  return m;
+}
 
 sigset_t handled_signals() {
   sigset_t set;
@@ -39,6 +44,7 @@ sigset_t handled_signals() {
     std::lock_guard<std::mutex> lock(folders_mutex());
     std::error_code ec;
     for (const auto& f : folders()) fs::remove_all(f, ec);
+    if (!message().empty()) std::cerr << message() << "\n" << std::flush;
   }
   // End as the signal would have: default action, delivered to this thread.
   ::signal(signal_number, SIG_DFL);
@@ -64,6 +70,11 @@ void clean_up_on_interrupt() {
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
     std::thread(wait_for_signal, set).detach();
   });
+}
+
+void say_on_interrupt(std::string text) {
+  std::lock_guard<std::mutex> lock(folders_mutex());
+  message() = std::move(text);
 }
 
 namespace interrupt {

@@ -5,8 +5,15 @@
 // the runs in progress and ends the process with the same signal.
 #pragma once
 
+#include <string>
+
 namespace touchcloud {
 
 void clean_up_on_interrupt();
+
+// A message printed on stderr when such a signal ends the process (empty:
+// none): what the interrupted work leaves behind and how to go on. A batch
+// keeps it current as its runs progress.
+void say_on_interrupt(std::string message);
 
 }  // namespace touchcloud

@@ -1,4 +1,10 @@
 // Test plugin: throws from process on the iteration named by `fail_at`.
+// Under mpirun, TOUCHCLOUD_TEST_KILL_RANK=N kills rank N outright (SIGKILL)
+// in its first call: a rank that dies.
+#include <csignal>
+#include <cstdlib>
+#include <string>
+
 #include "touchcloud/error.hpp"
 #include "touchcloud/plugin.hpp"
 
@@ -13,6 +19,9 @@ class ThrowingStage final : public touchcloud::Stage {
   }
   void declare_ports(touchcloud::PortSet& ports) override { ports.output<double>("value", "the call index"); }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
+    const char* kill = std::getenv("TOUCHCLOUD_TEST_KILL_RANK");
+    const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (kill && rank && std::string(kill) == rank) std::raise(SIGKILL);
     if (calls_ == fail_at_) {
       const std::string what = "the gel tore (simulated failure)";
       if (error_ == Kind::Input) throw touchcloud::InputError(what);

@@ -42,14 +42,16 @@ double analytic_disparity(const TouchSimulation& s, const RectifiedStereo& rect,
 
 }  // namespace
 
-TEST(ColourPattern, UntouchedGelGivesTheAnalyticDisparityEverywhere) {
+namespace {
+
+void expect_analytic_disparity(const std::string& sensor, int width, int height) {
   TempDir dir;
-  TouchSimulation s(colour_scene(dir, kPlane, "[render]"), 1);
+  TouchSimulation s(colour_scene(dir, kPlane, "[render]", sensor), 1);
   s.step({0, 0}, false);
   const DenseMaps truth = s.dense_truth();
   const RectifiedStereo& rect = truth.camera;
-  ASSERT_EQ(rect.width_px, 640);
-  ASSERT_EQ(truth.disparity_left_px.size(), cv::Size(640, 360));
+  ASSERT_EQ(rect.width_px, width);
+  ASSERT_EQ(truth.disparity_left_px.size(), cv::Size(width, height));
   double worst = 0;
   long compared = 0, hits_disagree = 0;
   for (int y = 0; y < rect.height_px; ++y)
@@ -72,13 +74,21 @@ TEST(ColourPattern, UntouchedGelGivesTheAnalyticDisparityEverywhere) {
       worst = std::max(worst, std::abs(truth.disparity_left_px.at<float>(y, x) - expected));
       ++compared;
     }
-  EXPECT_GT(compared, 640 * 360 / 2);
-  EXPECT_LT(hits_disagree, 640 * 360 / 1000);  // only pixels grazing the gel's rim
+  EXPECT_GT(compared, width * height / 2);
+  EXPECT_LT(hits_disagree, width * height / 1000);  // only pixels grazing the gel's rim
   EXPECT_LT(worst, 0.05) << "px";
   // No NaN anywhere in the maps.
   EXPECT_TRUE(cv::checkRange(truth.disparity_left_px) && cv::checkRange(truth.disparity_right_px) &&
               cv::checkRange(truth.depth_mm));
   EXPECT_EQ(cv::countNonZero(truth.contact_mask), 0);
+}
+
+}  // namespace
+
+TEST(ColourPattern, UntouchedGelGivesTheAnalyticDisparityEverywhere) {
+  expect_analytic_disparity(kColourSensor, 640, 360);
+  // The paper's network input: 256 x 256, non-square pixels.
+  expect_analytic_disparity("sensor:\n  pattern: colour_pattern\n  colour_pattern: {feature_mm: 2.0, image_size_px: [256, 256]}\n", 256, 256);
 }
 
 TEST(ColourPattern, RenderedPairIsThePatternSeenAtTheTrueDisparity) {

@@ -158,3 +158,37 @@ TEST(StereoDataset, RefusesAMalformedIndex) {
         << e.what();
   }
 }
+
+TEST(StereoDataset, BadFilesAreBadInputForTheCliAndNothingIsWritten) {
+  TempDir dir;
+  write_dataset(dir.path(), true);
+  write_file(dir / "copy.yaml",
+             "pipeline: copy_dataset\n"
+             "stages:\n"
+             "  - id: read\n"
+             "    plugin: stereo_dataset_reader\n"
+             "    params: {index: data/index.csv}\n"
+             "  - id: write\n"
+             "    plugin: stereo_dataset_writer\n"
+             "    params: {folder: copy}\n"
+             "    inputs: {frame: read.frame}\n");
+  const std::string pipeline = (dir / "copy.yaml").string(), out = (dir / "out").string();
+  ASSERT_EQ(run_cli({"run", pipeline, "--out", out}).exit_code, 0);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "copy" / "index.csv"));
+  std::filesystem::remove_all(dir / "out");
+
+  // Unreadable: found when the pair is read.
+  write_file(dir / "data" / "pairs" / "000000_right.png", "garbage");
+  const auto unreadable = run_cli({"run", pipeline, "--out", out});
+  EXPECT_EQ(unreadable.exit_code, 2) << unreadable.err;
+  EXPECT_NE(unreadable.err.find("index.csv:2: right file 'pairs/000000_right.png' cannot be read"), std::string::npos)
+      << unreadable.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "copy"));
+
+  // Missing: found by validate.
+  std::filesystem::remove(dir / "data" / "pairs" / "000000_right.png");
+  const auto missing = run_cli({"validate", pipeline});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("index.csv:2: right file 'pairs/000000_right.png' is missing"), std::string::npos)
+      << missing.err;
+}

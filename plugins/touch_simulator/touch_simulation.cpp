@@ -13,7 +13,7 @@ namespace touchcloud::touch_simulator {
 namespace {
 
 // Streams of random draws, one per effect.
-enum DrawStream : std::uint64_t { kPoseNoise = 1, kCentreNoise = 2, kDropout = 3, kImageNoise = 4 };
+enum DrawStream : std::uint64_t { kPoseNoise = 1, kCentreNoise = 2, kDropout = 3, kImageNoise = 4, kColourNoise = 5 };
 
 RenderStyle render_style(const EffectParameters& p) {
   RenderStyle style;
@@ -113,6 +113,7 @@ const SimulatedFrame& TouchSimulation::step(const Eigen::Vector2d& target_xy_mm,
   if (f.touch.pressed) ++counts_.touches_completed;
   has_frame_ = true;
   views_.reset();
+  colour_hits_.reset();
   return f;
 }
 
@@ -184,6 +185,9 @@ StereoFrame TouchSimulation::render() {
   if (!renderer_left_)
     throw InputError("images were asked for, but the scene " + scene_.file.string() +
                      " has no 'render' effect: add 'render' to its effects");
+  if (scene_.sensor.pattern != sensor::GelPattern::Markers)
+    throw InputError("marker images were asked for, but the scene " + scene_.file.string() +
+                     " has sensor.pattern colour_pattern: read the colour pair (output 'colour_frame') instead");
   const StereoViews& v = views();
   StereoFrame f;
   const auto frame = static_cast<std::uint64_t>(frame_.index);
@@ -205,6 +209,85 @@ StereoFrame TouchSimulation::render() {
   f.pose.base_from_sensor = frame_.reported_base_from_sensor;
   ++counts_.frames_rendered;
   return f;
+}
+
+void TouchSimulation::require_colour_pattern(const char* asked_for) const {
+  if (scene_.sensor.pattern != sensor::GelPattern::ColourPattern)
+    throw InputError(std::string(asked_for) + " was asked for, but the scene " + scene_.file.string() +
+                     " has sensor.pattern markers: set 'pattern: colour_pattern' in its sensor section");
+}
+
+ColourPairRenderer& TouchSimulation::colour_renderer() {
+  if (!colour_renderer_)
+    colour_renderer_ = std::make_unique<ColourPairRenderer>(optics_->rig(), optics_->left_from_sensor(),
+                                                            scene_.sensor.colour_pattern, scene_.sensor.gel.radius_mm());
+  return *colour_renderer_;
+}
+
+const std::array<ViewHits, 2>& TouchSimulation::colour_hits() {
+  if (!colour_hits_) {
+    if (!surface_)
+      surface_ = std::make_unique<GelSurface>(scene_.sensor.gel.radius_mm(), scene_.sensor.colour_pattern.surface_grid_mm);
+    surface_->press(frame().touch.base_from_sensor, *object_, contact_);
+    const ColourPairRenderer& r = colour_renderer();
+    colour_hits_ = std::array<ViewHits, 2>{r.cast(StereoSide::Left, *surface_), r.cast(StereoSide::Right, *surface_)};
+  }
+  return *colour_hits_;
+}
+
+ColourStereoFrame TouchSimulation::render_colour() {
+  require_colour_pattern("the colour pair");
+  if (!scene_.effects.has(Effect::Render))
+    throw InputError("the colour pair was asked for, but the scene " + scene_.file.string() +
+                     " has no 'render' effect: add 'render' to its effects");
+  const auto& hits = colour_hits();
+  const ColourPairRenderer& r = colour_renderer();
+  ColourStereoFrame f;
+  const auto frame = static_cast<std::uint64_t>(frame_.index);
+  for (int side = 0; side < 2; ++side) {
+    cv::Mat& image = side == 0 ? f.left : f.right;
+    image = r.shade(hits[side]);
+    if (scene_.effects.has(Effect::Blur)) blur_image(image, scene_.effect_parameters.blur_sigma_px);
+    if (image_noise_) {
+      cv::Mat grey_view = image.reshape(1);  // each channel its own noise
+      image_noise_->apply(grey_view, draw_key(noise_seed_, {kColourNoise, frame, static_cast<std::uint64_t>(side)}));
+    }
+  }
+  f.camera = r.camera();
+  f.timestamp_s = frame_.timestamp_s;
+  f.index = frame_.index;
+  f.pose.base_from_sensor = frame_.reported_base_from_sensor;
+  ++counts_.frames_rendered;
+  return f;
+}
+
+ColourStereoFrame TouchSimulation::render_colour_reference() {
+  require_colour_pattern("the colour reference pair");
+  if (!colour_reference_) {
+    const ColourPairRenderer& r = colour_renderer();
+    const GelSurface at_rest(scene_.sensor.gel.radius_mm(), scene_.sensor.colour_pattern.surface_grid_mm);
+    ColourStereoFrame f;
+    f.left = r.shade(r.cast(StereoSide::Left, at_rest));
+    f.right = r.shade(r.cast(StereoSide::Right, at_rest));
+    f.camera = r.camera();
+    colour_reference_ = std::move(f);
+  }
+  ColourStereoFrame f = *colour_reference_;
+  f.timestamp_s = frame().timestamp_s;
+  f.index = frame_.index;
+  f.pose.base_from_sensor = frame_.reported_base_from_sensor;
+  return f;
+}
+
+DenseMaps TouchSimulation::dense_truth() {
+  require_colour_pattern("dense ground truth");
+  const auto& hits = colour_hits();
+  DenseMaps maps;
+  colour_renderer().truth(hits[0], hits[1], *surface_, maps);
+  maps.timestamp_s = frame_.timestamp_s;
+  maps.index = frame_.index;
+  maps.pose.base_from_sensor = frame_.touch.base_from_sensor;  // the truth's true pose
+  return maps;
 }
 
 }  // namespace touchcloud::touch_simulator

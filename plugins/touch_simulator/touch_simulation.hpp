@@ -8,10 +8,14 @@
 //   marker_set()  those pixels as the detector would report them
 //                 (marker_dropout, pixel_noise on centres)
 //   render()      left and right images (`render`; pixel_noise, blur)
+//   render_colour()  the rectified colour pair of a colour-pattern gel
+//                 (`render`, sensor.pattern colour_pattern; pixel_noise, blur)
+//   dense_truth() its ground truth: disparities, depth, contact mask
 //
 // Every random draw derives from `noise_seed` and the frame number alone.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -20,9 +24,13 @@
 #include "motion/touch_motion.hpp"
 #include "objects/object_surface.hpp"
 #include "optics/sensor_optics.hpp"
+#include "gel/gel_surface.hpp"
+#include "render/colour_pair_renderer.hpp"
 #include "render/image_noise.hpp"
 #include "render/marker_renderer.hpp"
 #include "scene/scene.hpp"
+#include "touchcloud/types/colour_stereo_frame.hpp"
+#include "touchcloud/types/dense_maps.hpp"
 #include "touchcloud/types/marker_set.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 
@@ -75,11 +83,22 @@ class TouchSimulation {
   // The last frame's marker pixels; computed once per frame.
   const StereoViews& views();
   MarkerSet marker_set();
-  // InputError when the scene has no `render` effect.
+  // InputError when the scene has no `render` effect, or its gel carries the colour pattern.
   StereoFrame render();
+
+  // The last frame's rectified colour pair. InputError unless the scene has
+  // the `render` effect and sensor.pattern colour_pattern.
+  ColourStereoFrame render_colour();
+  // The same pair of the gel at rest: the no-contact reference (no noise).
+  ColourStereoFrame render_colour_reference();
+  // The last frame's ground truth (InputError unless sensor.pattern is colour_pattern).
+  DenseMaps dense_truth();
 
  private:
   std::vector<MarkerDot> dots(const ViewPixels& view, int side) const;
+  void require_colour_pattern(const char* asked_for) const;
+  ColourPairRenderer& colour_renderer();  // built on first use
+  const std::array<ViewHits, 2>& colour_hits();  // of the last frame, computed once
   bool dropped(int side, int marker_id) const;
 
   Scene scene_;
@@ -96,6 +115,10 @@ class TouchSimulation {
   SimulatedFrame frame_;
   bool has_frame_ = false;
   std::optional<StereoViews> views_;  // of frame_
+  std::unique_ptr<ColourPairRenderer> colour_renderer_;
+  std::unique_ptr<GelSurface> surface_;         // of frame_, with colour_hits_
+  std::optional<std::array<ViewHits, 2>> colour_hits_;
+  std::optional<ColourStereoFrame> colour_reference_;
   SimulationCounts counts_;
 };
 

@@ -76,6 +76,12 @@ class TouchSimulator final : public Stage {
     ports.output<CloudConstPtr>("truth_base", "marker truth in the base frame (true pose), mm");
     ports.output<MarkerSetPtr>("markers", "marker pixels in both views with ids and matches");
     ports.output<StereoFramePtr>("frame", "rendered stereo images (needs the scene's 'render' effect)");
+    ports.output<ColourStereoFramePtr>("colour_frame", "rectified colour pair (needs the 'render' effect and "
+                                                       "sensor.pattern colour_pattern)");
+    ports.output<ColourStereoFramePtr>("colour_reference", "the colour pair of the gel at rest (no contact, no "
+                                                           "noise): contact_mask's reference");
+    ports.output<DenseMapsPtr>("dense_truth", "ground truth of the colour pair: left/right disparity (px), depth "
+                                              "in the rectified left camera frame (mm), contact mask");
     ports.output<SensorPose>("pose", "the sensor pose the robot reports");
     ports.output<bool>("touch_done", "true on the recorded frame (stable contact, then the further press)");
   }
@@ -157,6 +163,12 @@ class TouchSimulator final : public Stage {
     if (io.wants("truth_base")) io.output<CloudConstPtr>("truth_base", to_cloud(f.gel.markers_base_mm));
     if (io.wants("markers")) io.output<MarkerSetPtr>("markers", std::make_shared<MarkerSet>(sim_->marker_set()));
     if (io.wants("frame")) io.output<StereoFramePtr>("frame", std::make_shared<StereoFrame>(sim_->render()));
+    if (io.wants("colour_frame"))
+      io.output<ColourStereoFramePtr>("colour_frame", std::make_shared<ColourStereoFrame>(sim_->render_colour()));
+    if (io.wants("colour_reference"))
+      io.output<ColourStereoFramePtr>("colour_reference",
+                                      std::make_shared<ColourStereoFrame>(sim_->render_colour_reference()));
+    if (io.wants("dense_truth")) io.output<DenseMapsPtr>("dense_truth", std::make_shared<DenseMaps>(sim_->dense_truth()));
     if (io.wants("pose")) io.output("pose", pose);
     if (io.wants("touch_done")) io.output("touch_done", f.touch.pressed);
 

@@ -10,6 +10,7 @@ void press_gel(const std::vector<Eigen::Vector3d>& rest_sensor_mm, const Eigen::
   const std::size_t n = rest_sensor_mm.size();
   state.markers_sensor_mm = rest_sensor_mm;
   state.markers_base_mm.resize(n);
+  state.overlapping.assign(n, 0);
   state.markers_overlapping = 0;
   state.max_overlap_mm = 0;
   std::vector<double> rise(n, 0.0);
@@ -20,6 +21,7 @@ void press_gel(const std::vector<Eigen::Vector3d>& rest_sensor_mm, const Eigen::
     const double overlap = object.overlap_mm(p.head<2>(), p.z());
     if (overlap > 0) {
       ++state.markers_overlapping;
+      state.overlapping[i] = 1;
       state.max_overlap_mm = std::max(state.max_overlap_mm, overlap);
       rise[i] = overlap;
       in_contact.push_back(i);

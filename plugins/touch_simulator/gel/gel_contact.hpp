@@ -11,6 +11,7 @@
 // Without `contact` the markers stay at rest, whatever the overlap.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -28,6 +29,7 @@ struct GelContactOptions {
 struct GelState {
   std::vector<Eigen::Vector3d> markers_sensor_mm;  // same order as the rest layout
   std::vector<Eigen::Vector3d> markers_base_mm;
+  std::vector<std::uint8_t> overlapping;  // 1 where the rest marker lies below the object's surface
   std::size_t markers_overlapping = 0;  // markers of the rest gel below the surface
   double max_overlap_mm = 0;            // deepest of them
 };

@@ -97,6 +97,32 @@ void read_markers(ConfigFields& m, const GelSpec& gel, MarkerSpec& markers) {
   if (markers.min_spacing_mm > 0.5 * gel.diameter_mm) m.error("min_spacing_mm", "must be well below the gel's diameter");
 }
 
+void read_pattern(ConfigFields& f, GelStereoSensor& sensor) {
+  const std::string pattern = f.text("pattern", "markers");
+  if (pattern == "markers") sensor.pattern = GelPattern::Markers;
+  else if (pattern == "colour_pattern") sensor.pattern = GelPattern::ColourPattern;
+  else f.error("pattern", "'" + pattern + "' is not one of: markers, colour_pattern");
+  if (!f.has("colour_pattern")) return;
+  if (sensor.pattern != GelPattern::ColourPattern)
+    f.error("colour_pattern", "is given, but pattern is not colour_pattern");
+  auto c = f.child("colour_pattern");
+  ColourPatternSpec& p = sensor.colour_pattern;
+  p.feature_mm = c->number("feature_mm", p.feature_mm, FieldRule::Positive);
+  p.opacity = c->number("opacity", p.opacity, FieldRule::Probability);
+  p.seed = c->seed("seed", p.seed);
+  p.vignetting = c->number("vignetting", p.vignetting, FieldRule::Probability);
+  const auto size = c->numbers("image_size_px", {0.0, 0.0}, 2, FieldRule::NonNegative);
+  if (size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]) || size[0] > 8192 || size[1] > 8192)
+    c->error("image_size_px", "must be two whole numbers in [0, 8192] (0: the left camera's size)");
+  else {
+    p.width_px = static_cast<int>(size[0]);
+    p.height_px = static_cast<int>(size[1]);
+  }
+  p.surface_grid_mm = c->number("surface_grid_mm", p.surface_grid_mm, FieldRule::Positive);
+  if (p.surface_grid_mm < 0.02 || p.surface_grid_mm > 2.0)
+    c->error("surface_grid_mm", "must be in [0.02, 2] mm");
+}
+
 optics::PinholeCamera camera(optics::CameraIntrinsics intrinsics, bool lens_distortion) {
   if (!lens_distortion) intrinsics.distortion = {};
   return optics::PinholeCamera(intrinsics);
@@ -169,6 +195,7 @@ Eigen::Isometry3d GelStereoSensor::sensor_from_left_camera() const {
 void read_gelstereo_sensor(ConfigFields& f, ConfigProblems& problems, GelStereoSensor& sensor) {
   if (auto gel = f.child("gel")) sensor.gel.diameter_mm = gel->number("diameter_mm", sensor.gel.diameter_mm, FieldRule::Positive);
   if (auto markers = f.child("markers")) read_markers(*markers, sensor.gel, sensor.markers);
+  read_pattern(f, sensor);
   {
     auto plate = f.child("plate");  // before the cameras: their default height needs the thickness
     sensor.plate_where = problems.where(plate->node());
@@ -273,6 +300,17 @@ void write_gelstereo_sensor(const GelStereoSensor& sensor, const fs::path& file,
   out << YAML::Key << "min_spacing_mm" << YAML::Value << m.min_spacing_mm << YAML::Key << "mean_spacing_mm"
       << YAML::Value << m.mean_spacing_mm << YAML::Key << "diameter_mm" << YAML::Value << m.diameter_mm
       << YAML::Key << "seed" << YAML::Value << m.seed << YAML::EndMap;
+  // Written only for the colour pattern, so marker sensor files stay as they were.
+  if (sensor.pattern == GelPattern::ColourPattern) {
+    const ColourPatternSpec& c = sensor.colour_pattern;
+    out << YAML::Key << "pattern" << YAML::Value << "colour_pattern";
+    out << YAML::Key << "colour_pattern" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "feature_mm" << YAML::Value << c.feature_mm << YAML::Key << "opacity" << YAML::Value
+        << c.opacity << YAML::Key << "seed" << YAML::Value << c.seed << YAML::Key << "vignetting" << YAML::Value
+        << c.vignetting << YAML::Key << "image_size_px" << YAML::Value << YAML::Flow
+        << std::vector<int>{c.width_px, c.height_px} << YAML::Key << "surface_grid_mm" << YAML::Value
+        << c.surface_grid_mm << YAML::EndMap;
+  }
   const PlateSpec& p = sensor.plate;
   out << YAML::Key << "plate" << YAML::Value << YAML::Flow << YAML::BeginMap;
   out << YAML::Key << "thickness_mm" << YAML::Value << p.thickness_mm;

@@ -37,6 +37,20 @@ struct MarkerSpec {
   std::uint64_t seed = 1;        // the layout is a property of the gel, not of a run
 };
 
+// What is printed on the gel's surface: marker dots (the Palm 2.0), or a
+// dense, semitransparent colour pattern (the colour-pattern GelStereo, seed
+// 000's water-transfer layer) for dense stereo.
+enum class GelPattern { Markers, ColourPattern };
+
+struct ColourPatternSpec {
+  double feature_mm = 0.6;   // size of the pattern's colour blobs on the gel
+  double opacity = 0.8;      // share of the pattern's colour over the white gel (semitransparent)
+  std::uint64_t seed = 1;    // the pattern is a property of the gel, not of a run
+  double vignetting = 0.1;   // the LED ring's light: uniform, this much darker at the corners
+  int width_px = 0, height_px = 0;  // size of the rectified images (0: the left camera's)
+  double surface_grid_mm = 0.2;     // spacing of the dense gel surface that deforms
+};
+
 struct PlateSpec {
   double thickness_mm = 5.0;
   Eigen::Vector2d tilt_deg = Eigen::Vector2d::Zero();  // about the housing's x, then y axis
@@ -59,6 +73,8 @@ inline constexpr double kDefaultPlateGapMm = 45.0;
 struct GelStereoSensor {
   GelSpec gel;
   MarkerSpec markers;
+  GelPattern pattern = GelPattern::Markers;
+  ColourPatternSpec colour_pattern;  // used with GelPattern::ColourPattern
   PlateSpec plate;
   CameraSpec cameras;
   double fps = 30.0;

@@ -1,0 +1,96 @@
+#include "conversion/disparity_conversion.hpp"
+
+#include <cmath>
+
+#include "touchcloud/error.hpp"
+#include "touchcloud/optics/rectified_rays.hpp"
+
+namespace touchcloud::disparity_to_cloud {
+
+namespace {
+constexpr int kMaxRowIterations = 20;
+constexpr double kRowTolerancePx = 1e-10;
+}  // namespace
+
+DisparityConversion::DisparityConversion(const optics::StereoRig& rig, const Eigen::Isometry3d& sensor_from_left,
+                                         bool refraction)
+    : rig_(rig), sensor_from_left_(sensor_from_left), refraction_(refraction) {}
+
+void DisparityConversion::require_same_camera(const RectifiedStereo& rect, const std::string& where) const {
+  rect.validate((where + ": rectified camera").c_str());
+  const RectifiedStereo mine = rectify_stereo_rig(rig_, rect.width_px, rect.height_px);
+  const double tolerance = 1e-6;
+  auto differs = [&](double a, double b) { return std::abs(a - b) > tolerance * std::max(1.0, std::abs(b)); };
+  if (differs(rect.fx_px, mine.fx_px) || differs(rect.fy_px, mine.fy_px) || differs(rect.cx_left_px, mine.cx_left_px) ||
+      differs(rect.cx_right_px, mine.cx_right_px) || differs(rect.cy_px, mine.cy_px) ||
+      differs(rect.baseline_mm, mine.baseline_mm) ||
+      (rect.left_rect_from_left - mine.left_rect_from_left).norm() > tolerance)
+    throw InputError(where + ": the maps' rectified camera (fx " + std::to_string(rect.fx_px) + " px, baseline " +
+                     std::to_string(rect.baseline_mm) + " mm) is not the sensor file's rectified pair at " +
+                     std::to_string(rect.width_px) + " x " + std::to_string(rect.height_px) + " px (fx " +
+                     std::to_string(mine.fx_px) + " px, baseline " + std::to_string(mine.baseline_mm) +
+                     " mm): give the sensor the maps were made with");
+}
+
+std::optional<double> DisparityConversion::disparity_px(const DenseMaps& maps, int x, int y,
+                                                        DisparitySource source) const {
+  if (!maps.valid_left.at<std::uint8_t>(y, x)) return std::nullopt;
+  const double d_left = maps.disparity_left_px.at<float>(y, x);
+  if (source == DisparitySource::Left) return d_left;
+  // Eq. 7 with the right disparity taken where the left one points.
+  const double xr = x - d_left;
+  const int x0 = static_cast<int>(std::floor(xr));
+  const int w = maps.disparity_right_px.cols;
+  if (x0 < 0 || x0 >= w) return std::nullopt;
+  const double a = xr - x0;
+  const auto* valid = maps.valid_right.ptr<std::uint8_t>(y);
+  const auto* right = maps.disparity_right_px.ptr<float>(y);
+  double d_right;
+  if (a == 0) {
+    if (!valid[x0]) return std::nullopt;
+    d_right = right[x0];
+  } else {
+    if (x0 + 1 >= w || !valid[x0] || !valid[x0 + 1]) return std::nullopt;
+    d_right = (1 - a) * right[x0] + a * right[x0 + 1];
+  }
+  return 0.5 * (d_left + d_right);
+}
+
+std::optional<Eigen::Vector3d> DisparityConversion::point_mm(const RectifiedStereo& rect, double x, double y,
+                                                             double d) const {
+  Eigen::Vector3d left;
+  if (refraction_) {
+    // Through the plate, rectified rows are not exactly epipolar: the right
+    // view sees the left ray's point a little above or below row y. The
+    // disparity fixes only the right column x - d; the row is found by
+    // triangulating, projecting the left ray's closest point into the right
+    // view and taking its row, until the row stops changing (the right ray
+    // then meets the left one there). The left ray's image runs nearly along
+    // a row, so each step shrinks the row's error by that image's slope.
+    const auto l = optics::rectified_silicone_ray(rig_, rect, optics::StereoSide::Left, {x, y});
+    if (l.status != optics::TraceStatus::Ok) return std::nullopt;
+    double right_row = y;
+    Eigen::Vector3d on_left = l.origin_mm;
+    for (int k = 0; k < kMaxRowIterations; ++k) {
+      const auto r = optics::rectified_silicone_ray(rig_, rect, optics::StereoSide::Right, {x - d, right_row});
+      if (r.status != optics::TraceStatus::Ok) return std::nullopt;
+      const auto t = optics::triangulate_rays(l.origin_mm, l.direction, r.origin_mm, r.direction);
+      if (t.status != optics::TriangulationStatus::Ok) return std::nullopt;
+      on_left = l.origin_mm + t.s_left_mm * l.direction.normalized();
+      const auto seen = optics::project_rectified_refracted(rig_, rect, optics::StereoSide::Right, on_left);
+      if (seen.status != optics::TraceStatus::Ok && seen.status != optics::TraceStatus::OutOfView) return std::nullopt;
+      const double change = std::abs(seen.pixel_px.y() - right_row);
+      right_row = seen.pixel_px.y();
+      if (change < kRowTolerancePx) break;
+    }
+    left = on_left;
+  } else {
+    // Eq. 8-9.
+    const Eigen::Vector4d p = rect.q() * Eigen::Vector4d(x, y, d, 1.0);
+    if (!(p.w() > 0)) return std::nullopt;
+    left = rect.left_rect_from_left.transpose() * (p.head<3>() / p.w());
+  }
+  return sensor_from_left_ * left;
+}
+
+}  // namespace touchcloud::disparity_to_cloud

@@ -1,0 +1,99 @@
+// stereo_disparity: dense left and right disparity maps of a rectified colour
+// pair by OpenCV's StereoBM or StereoSGBM (seed 000's classical baselines,
+// Table I's BM and SGBM rows), with a left-right consistency check; invalid
+// pixels are marked, not guessed. The matcher is matcher/disparity_matcher.hpp.
+#include <optional>
+
+#include <opencv2/core/version.hpp>
+
+#include "matcher/disparity_matcher.hpp"
+#include "touchcloud/library_versions.hpp"
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/types/colour_stereo_frame.hpp"
+#include "touchcloud/types/dense_maps.hpp"
+
+namespace touchcloud {
+
+// Recorded in summary.json's versions when this plugin is loaded.
+namespace {
+const LibraryVersion opencv_version("opencv", CV_VERSION);
+}  // namespace
+
+using stereo_disparity::MatchMethod;
+
+class StereoDisparity final : public Stage {
+  stereo_disparity::MatcherOptions o_;
+  std::optional<stereo_disparity::DisparityMatcher> matcher_;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("method", o_.method, MatchMethod::SemiGlobal,
+          {{"bm", MatchMethod::BlockMatching}, {"sgbm", MatchMethod::SemiGlobal}})
+        .doc("OpenCV's StereoBM (block matching, on grey) or StereoSGBM (semi-global, on colour)");
+    p.add("block_size_px", o_.block_size_px, 7)
+        .unit("px")
+        .doc("matched block's side, odd (the paper's rows: 7, 15, 21, 33); BM takes 5..255, SGBM 1..255");
+    p.add("min_disparity_px", o_.min_disparity_px, 0).unit("px").doc("smallest disparity searched");
+    p.add("num_disparities", o_.num_disparities, 64)
+        .unit("px")
+        .doc("how many disparities are searched from min_disparity_px, a multiple of 16");
+    p.add("uniqueness_ratio", o_.uniqueness_ratio, 10)
+        .unit("%")
+        .doc("margin by which the best match must beat the second best; else the pixel is invalid");
+    p.add("lr_check", o_.lr_check, true)
+        .doc("left-right consistency check: a disparity the other view does not confirm is marked invalid");
+    p.add("max_lr_difference_px", o_.max_lr_difference_px, 1.0)
+        .unit("px")
+        .at_least(0)
+        .doc("largest difference between the left and the right view's disparity that the check accepts");
+    // OpenCV's own limits, checked by `validate`: each rule blames its parameter.
+    auto opencv_rule = [this](const std::string& parameter) -> std::optional<std::string> {
+      try {
+        o_.validate();
+      } catch (const ParameterError& e) {
+        if (e.parameter() == parameter) return e.detail();
+      }
+      return std::nullopt;
+    };
+    p.rule({"block_size_px", "method"}, [opencv_rule] { return opencv_rule("block_size_px"); });
+    p.rule({"num_disparities"}, [opencv_rule] { return opencv_rule("num_disparities"); });
+    p.rule({"min_disparity_px"}, [opencv_rule] { return opencv_rule("min_disparity_px"); });
+    p.rule({"uniqueness_ratio"}, [opencv_rule] { return opencv_rule("uniqueness_ratio"); });
+  }
+
+  void declare_ports(PortSet& ports) override {
+    ports.input<ColourStereoFramePtr>("frame", "rectified colour pair (8-bit BGR or grey, both the same size)");
+    ports.output<DenseMapsPtr>("disparity", "left and right disparity maps (px) with validity masks, and the "
+                                            "rectified camera");
+  }
+
+  void on_configure(RunContext&) override { matcher_.emplace(o_); }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto& frame = io.input<ColourStereoFramePtr>("frame");
+    if (!frame) throw InputError("input 'frame': no colour stereo frame (null)");
+    if (frame->left.cols != frame->camera.width_px || frame->left.rows != frame->camera.height_px)
+      throw InputError("input 'frame': the left image is " + std::to_string(frame->left.cols) + " x " +
+                       std::to_string(frame->left.rows) + " px, but its rectified camera is " +
+                       std::to_string(frame->camera.width_px) + " x " + std::to_string(frame->camera.height_px) + " px");
+    const auto pair = matcher_->match(frame->left, frame->right, "input 'frame' (frame " + std::to_string(frame->index) + ")");
+    auto maps = std::make_shared<DenseMaps>();
+    maps->disparity_left_px = pair.left_px;
+    maps->disparity_right_px = pair.right_px;
+    maps->valid_left = pair.valid_left;
+    maps->valid_right = pair.valid_right;
+    maps->camera = frame->camera;
+    maps->timestamp_s = frame->timestamp_s;
+    maps->index = frame->index;
+    maps->pose = frame->pose;
+    const double pixels = static_cast<double>(pair.valid_left.total());
+    ctx.metric("valid_left_share", cv::countNonZero(pair.valid_left) / pixels, "1");
+    ctx.metric("valid_right_share", cv::countNonZero(pair.valid_right) / pixels, "1");
+    io.output<DenseMapsPtr>("disparity", std::move(maps));
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::StereoDisparity, "stereo_disparity",
+                  "Dense left and right disparity maps of a rectified colour pair (OpenCV StereoBM or StereoSGBM), "
+                  "left-right checked")

@@ -7,7 +7,9 @@
 #include <opencv2/core.hpp>
 
 #include "touchcloud/types/camera_image.hpp"
+#include "touchcloud/types/colour_stereo_frame.hpp"
 #include "touchcloud/types/contact_state.hpp"
+#include "touchcloud/types/dense_maps.hpp"
 #include "touchcloud/types/frames.hpp"
 #include "touchcloud/types/marker_set.hpp"
 #include "touchcloud/types/score.hpp"
@@ -99,6 +101,18 @@ py::object to_python(const std::string& key, const std::any& value) {
     d["right"] = image_array((*v)->right);
     return d;
   }
+  if (const auto* v = std::any_cast<ColourStereoFramePtr>(&value))  // BGR, as OpenCV holds them
+    return py::dict(py::arg("left") = image_array((*v)->left), py::arg("right") = image_array((*v)->right));
+  if (const auto* v = std::any_cast<DenseMapsPtr>(&value)) {
+    // The maps a stage filled (disparity px, depth mm, masks 0/255); empty ones are None.
+    const auto map = [](const cv::Mat& m) -> py::object { return m.empty() ? py::none() : image_array(m); };
+    const DenseMaps& d = **v;
+    return py::dict(py::arg("disparity_left_px") = map(d.disparity_left_px),
+                    py::arg("disparity_right_px") = map(d.disparity_right_px), py::arg("valid_left") = map(d.valid_left),
+                    py::arg("valid_right") = map(d.valid_right), py::arg("depth_mm") = map(d.depth_mm),
+                    py::arg("depth_valid") = map(d.depth_valid), py::arg("contact_mask") = map(d.contact_mask),
+                    py::arg("timestamp_s") = d.timestamp_s);
+  }
   if (const auto* v = std::any_cast<Score>(&value)) {
     py::dict d;
     for (const auto& m : v->metrics) d[py::str(m.name)] = py::dict(py::arg("value") = m.value, py::arg("unit") = m.unit);
@@ -135,8 +149,8 @@ py::object to_python(const std::string& key, const std::any& value) {
   }
   if (const auto* v = std::any_cast<bool>(&value)) return py::bool_(*v);
   if (const auto* v = std::any_cast<double>(&value)) return py::float_(*v);
-  throw py::type_error("output '" + key + "' has no Python form (clouds, tactile clouds, surfaces, images, stereo "
-                       "frames, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
+  throw py::type_error("output '" + key + "' has no Python form (clouds, tactile clouds, surfaces, images, stereo and colour stereo "
+                       "frames, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
 }
 
 void bind_surface(py::module_& m) {

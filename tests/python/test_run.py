@@ -100,3 +100,18 @@ def test_the_gil_is_released_while_a_pipeline_runs(source):
         done.wait(0.001)
     t.join()
     assert ticks > 20  # Python code ran beside the pipeline
+
+
+def test_dense_maps_and_colour_pairs_are_arrays(source):
+    r = touchcloud.run(str(source / "pipelines/simulate_touch_dense.yaml"), seed=1,
+                       outputs=["sim.colour_frame", "disparity.disparity", "mask.mask", "cloud.cloud"])
+    left = r.outputs["sim.colour_frame"]["left"]
+    assert left.dtype == np.uint8 and left.ndim == 3 and left.shape[2] == 3
+    maps = r.outputs["disparity.disparity"]
+    disparity, valid = maps["disparity_left_px"], maps["valid_left"]
+    assert disparity.dtype == np.float32 and disparity.shape == left.shape[:2] and valid.shape == disparity.shape
+    assert np.isfinite(disparity).all() and (disparity[valid > 0] >= 0).all() and (valid > 0).mean() > 0.5
+    assert maps["depth_mm"] is None  # the matcher fills disparities only
+    mask = r.outputs["mask.mask"]["contact_mask"]
+    # One point per valid contact pixel, in mm.
+    assert 0 < len(r.outputs["cloud.cloud"]) <= ((mask > 0) & (valid > 0)).sum()

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cloud_files.hpp"
+#include "counting_pipeline.hpp"
 #include "test_support.hpp"
 
 using touchcloud::test::read_file;
@@ -24,11 +25,7 @@ const std::string kTestPlugins = "TOUCHCLOUD_PLUGIN_PATH=" TOUCHCLOUD_TEST_PLUGI
 
 // The counter adds `step` per iteration; each load takes check_ms (a run of
 // ~0.1 s, so that both ranks get runs); random_draw depends on the seed.
-std::string counting_pipeline() {
-  return "stages:\n  - id: l\n    loop:\n      max_iterations: 3\n      stages:\n"
-         "        - id: c\n          plugin: test_counter\n          params: {step: 1, check_ms: 100}\n"
-         "          inputs: {previous: c.value@previous}\n";
-}
+std::string counting_pipeline() { return touchcloud::test::counting_pipeline("step: 1, check_ms: 100"); }
 
 // mpirun's path, or "" where it is absent or the CLI was built without MPI.
 std::string mpirun() {

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "counting_pipeline.hpp"
 #include "test_support.hpp"
 
 using touchcloud::test::read_file;
@@ -14,12 +15,7 @@ namespace fs = std::filesystem;
 namespace {
 const std::string kTestPlugins = "TOUCHCLOUD_PLUGIN_PATH=" TOUCHCLOUD_TEST_PLUGIN_DIR;
 
-// The counter adds `step` per iteration for 3 iterations: final value 3 * step.
-std::string counting_pipeline() {
-  return "stages:\n  - id: l\n    loop:\n      max_iterations: 3\n      stages:\n"
-         "        - id: c\n          plugin: test_counter\n          params: {step: 1}\n"
-         "          inputs: {previous: c.value@previous}\n";
-}
+using touchcloud::test::counting_pipeline;
 
 std::vector<std::vector<std::string>> read_csv(const fs::path& file) {
   std::vector<std::vector<std::string>> rows;

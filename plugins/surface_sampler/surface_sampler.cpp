@@ -60,7 +60,8 @@ class SurfaceSampler final : public Stage {
     const Eigen::VectorXd ys = Eigen::VectorXd::LinSpaced(ny, area_.y_mm[0], area_.y_mm[1]);
     const Eigen::MatrixXd z = surface->mean_on_lattice(xs, ys);
     if (z.rows() != nx || z.cols() != ny) throw RunError("the surface model returned a lattice of the wrong size");
-    const Eigen::MatrixXd sd = max_sd_mm_ ? lattice_sd(*surface, xs, ys) : Eigen::MatrixXd();
+    const Eigen::MatrixXd sd =
+        max_sd_mm_ ? Eigen::MatrixXd(surface->variance_on_lattice(xs, ys).cwiseMax(0.0).cwiseSqrt()) : Eigen::MatrixXd();
     const auto range = surface->data_z_range_mm();
     auto cloud = std::make_shared<PointCloud>();
     cloud->reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
@@ -91,14 +92,6 @@ class SurfaceSampler final : public Stage {
     last_cloud_ = cloud;
     io.output("cloud", last_cloud_);
   }
-  static Eigen::MatrixXd lattice_sd(const SurfaceModel& surface, const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) {
-    Eigen::MatrixX2d xy(xs.size() * ys.size(), 2);
-    for (Eigen::Index j = 0; j < ys.size(); ++j)
-      for (Eigen::Index i = 0; i < xs.size(); ++i) xy.row(j * xs.size() + i) << xs[i], ys[j];
-    const Eigen::VectorXd sd = surface.variance(xy).cwiseMax(0.0).cwiseSqrt();
-    return Eigen::Map<const Eigen::MatrixXd>(sd.data(), xs.size(), ys.size());
-  }
-
   std::string outside_message(double x, double y, double z, const std::array<double, 2>& range) const {
     std::ostringstream s;
     s << "the surface mean at (" << x << ", " << y << ") mm is z = " << z << " mm, more than outside_data_margin_mm "

@@ -23,14 +23,23 @@ class SurfaceModel {
   // Mean on the lattice xs x ys: result(i, j) at (xs[i], ys[j]). Models with a
   // faster path than mean() at every point (a separable kernel) override it.
   virtual Eigen::MatrixXd mean_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const {
-    Eigen::MatrixX2d xy(xs.size() * ys.size(), 2);
-    for (Eigen::Index j = 0; j < ys.size(); ++j)
-      for (Eigen::Index i = 0; i < xs.size(); ++i) xy.row(j * xs.size() + i) << xs[i], ys[j];
-    const Eigen::VectorXd z = mean(xy);
+    const Eigen::VectorXd z = mean(lattice_points(xs, ys));
     return Eigen::Map<const Eigen::MatrixXd>(z.data(), xs.size(), ys.size());
   }
   // Posterior variance (mm^2) at each row; finite and >= 0.
   virtual Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const = 0;
+  // Variance on the lattice, laid out as mean_on_lattice's result.
+  Eigen::MatrixXd variance_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const {
+    const Eigen::VectorXd v = variance(lattice_points(xs, ys));
+    return Eigen::Map<const Eigen::MatrixXd>(v.data(), xs.size(), ys.size());
+  }
+  // The lattice xs x ys as rows (x, y), x fastest.
+  static Eigen::MatrixX2d lattice_points(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) {
+    Eigen::MatrixX2d xy(xs.size() * ys.size(), 2);
+    for (Eigen::Index j = 0; j < ys.size(); ++j)
+      for (Eigen::Index i = 0; i < xs.size(); ++i) xy.row(j * xs.size() + i) << xs[i], ys[j];
+    return xy;
+  }
   // [min, max] z (mm) of the data the model was fitted to; nothing when it
   // has none or does not say. A mean far outside it is extrapolation: stages
   // that sample the surface mask it or refuse it rather than pass it on.

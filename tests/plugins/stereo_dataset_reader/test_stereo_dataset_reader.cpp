@@ -65,3 +65,15 @@ TEST(StereoDataset, RefusesAMalformedIndex) {
   }
 }
 
+
+TEST(StereoDataset, ReadsAnIndexWithWindowsLineEnds) {
+  TempDir dir;
+  write_dataset(dir.path(), true);
+  const auto lf = io::read_dataset_index(dir / "data");
+  std::string text = read_file(dir / "data" / "index.csv"), crlf;
+  for (char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  write_file(dir / "data" / "index.csv", crlf);
+  const auto rows = io::read_dataset_index(dir / "data");
+  ASSERT_EQ(rows.size(), lf.size());
+  EXPECT_EQ(rows.back().files, lf.back().files);  // no '\r' left on the last column
+}

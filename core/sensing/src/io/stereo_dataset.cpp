@@ -59,10 +59,16 @@ std::vector<StereoDatasetRow> read_dataset_index(const fs::path& folder) {
     throw InputError(file.string() + ":" + std::to_string(line) + ": " + why, {file.string(), line, 1});
   };
   std::string line;
-  if (!std::getline(in, line) || line != header())
+  // Lines may end in CRLF, as spreadsheets and Python's csv module write them.
+  auto next_line = [&in, &line] {
+    if (!std::getline(in, line)) return false;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  if (!next_line() || line != header())
     fail(1, "the first line must name the columns: " + header());
   std::vector<StereoDatasetRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
+  for (int number = 2; next_line(); ++number) {
     if (line.empty()) continue;
     const auto fields = split_csv(line);
     if (fields.size() != 2 + kDatasetFileCount)

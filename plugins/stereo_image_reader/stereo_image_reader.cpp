@@ -1,5 +1,5 @@
 // stereo_image_reader: a user's left and right image files as a stereo frame
-// (8-bit grey), one pair per call; '{iteration}' in a path becomes the loop
+// (8-bit grey, or BGR for a colour-pattern sensor), one pair per call; '{iteration}' in a path becomes the loop
 // iteration, so a loop can walk through a recorded sequence.
 #include <opencv2/imgcodecs.hpp>
 
@@ -10,8 +10,8 @@ namespace touchcloud {
 
 namespace {
 
-cv::Mat read_grey(const std::string& file, const char* side) {
-  cv::Mat image = cv::imread(file, cv::IMREAD_GRAYSCALE);
+cv::Mat read_image(const std::string& file, const char* side, bool colour) {
+  cv::Mat image = cv::imread(file, colour ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
   if (image.empty())
     throw InputError(std::string("the ") + side + " image " + file +
                      " cannot be read (missing, unreadable or not an image format OpenCV knows)");
@@ -27,6 +27,7 @@ std::string size_text(const cv::Mat& image) {
 class StereoImageReader final : public Stage {
   std::string left_, right_;
   double fps_ = 30;
+  bool colour_ = false;
   long frames_read_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
@@ -37,9 +38,12 @@ class StereoImageReader final : public Stage {
         .input_file()
         .doc("right image file, the same size as the left; '{iteration}' as for left");
     p.add("fps", fps_, 30.0).unit("frames/s").above(0).doc("frame rate: frame k gets timestamp k / fps");
+    p.add("colour", colour_, false)
+        .doc("read the images as 8-bit BGR (the colour-pattern GelStereo; grey files become three equal channels); "
+             "false: 8-bit grey (the marker sensor)");
   }
   void declare_ports(PortSet& ports) override {
-    ports.output<StereoFramePtr>("frame", "the two images, 8-bit grey; pose unknown (identity)");
+    ports.output<StereoFramePtr>("frame", "the two images, 8-bit grey (or BGR with colour); pose unknown (identity)");
   }
 
   // Fixed files are read at check time so that `validate` reports them.
@@ -60,10 +64,10 @@ class StereoImageReader final : public Stage {
     io.output<StereoFramePtr>("frame", std::move(frame));
   }
 
-  static StereoFrame read_pair(const std::string& left, const std::string& right) {
+  StereoFrame read_pair(const std::string& left, const std::string& right) const {
     StereoFrame f;
-    f.left = read_grey(left, "left");
-    f.right = read_grey(right, "right");
+    f.left = read_image(left, "left", colour_);
+    f.right = read_image(right, "right", colour_);
     if (f.left.size() != f.right.size())
       throw InputError("the right image " + right + " is " + size_text(f.right) + " but the left image " + left +
                        " is " + size_text(f.left));

@@ -18,18 +18,25 @@ DisparityConversion::DisparityConversion(const optics::StereoRig& rig, const Eig
 
 void DisparityConversion::require_same_camera(const RectifiedStereo& rect, const std::string& where) const {
   rect.validate((where + ": rectified camera").c_str());
-  const RectifiedStereo mine = rectify_stereo_rig(rig_, rect.width_px, rect.height_px);
+  // Any rectification of this rig will do (the simulator's, or OpenCV's
+  // stereoRectify of a recorded pair, with its own focal length and
+  // rotations): both rectified frames parallel, x along the baseline, the
+  // baseline the rig's. A pair of another sensor fails one of these.
+  const Eigen::Vector3d right_centre = rig_.centre_mm(optics::StereoSide::Right);  // left frame
+  const Eigen::Vector3d along = rect.left_rect_from_left * right_centre;
+  const Eigen::Matrix3d right_rect_from_left_rect =
+      rect.right_rect_from_right * rig_.right_from_left().linear() * rect.left_rect_from_left.transpose();
   const double tolerance = 1e-6;
-  auto differs = [&](double a, double b) { return std::abs(a - b) > tolerance * std::max(1.0, std::abs(b)); };
-  if (differs(rect.fx_px, mine.fx_px) || differs(rect.fy_px, mine.fy_px) || differs(rect.cx_left_px, mine.cx_left_px) ||
-      differs(rect.cx_right_px, mine.cx_right_px) || differs(rect.cy_px, mine.cy_px) ||
-      differs(rect.baseline_mm, mine.baseline_mm) ||
-      (rect.left_rect_from_left - mine.left_rect_from_left).norm() > tolerance)
-    throw InputError(where + ": the maps' rectified camera (fx " + std::to_string(rect.fx_px) + " px, baseline " +
-                     std::to_string(rect.baseline_mm) + " mm) is not the sensor file's rectified pair at " +
-                     std::to_string(rect.width_px) + " x " + std::to_string(rect.height_px) + " px (fx " +
-                     std::to_string(mine.fx_px) + " px, baseline " + std::to_string(mine.baseline_mm) +
-                     " mm): give the sensor the maps were made with");
+  const bool parallel = (right_rect_from_left_rect - Eigen::Matrix3d::Identity()).norm() <= tolerance;
+  const bool on_x = std::hypot(along.y(), along.z()) <= tolerance * right_centre.norm() && along.x() > 0;
+  const bool same_baseline = std::abs(rect.baseline_mm - right_centre.norm()) <= tolerance * right_centre.norm();
+  if (!parallel || !on_x || !same_baseline)
+    throw InputError(where + ": the maps' rectified camera (baseline " + std::to_string(rect.baseline_mm) +
+                     " mm) is not a rectification of the sensor file's cameras (baseline " +
+                     std::to_string(right_centre.norm()) + " mm" +
+                     (!parallel ? "; its two rectified frames are not parallel for this rig" : "") +
+                     (parallel && !on_x ? "; its x axis is not along this rig's baseline" : "") +
+                     "): give the sensor the maps were made with");
 }
 
 std::optional<double> DisparityConversion::disparity_px(const DenseMaps& maps, int x, int y,

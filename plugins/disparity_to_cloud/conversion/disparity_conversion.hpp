@@ -33,8 +33,8 @@ struct ConversionCounts {
 class DisparityConversion {
  public:
   // `rig`: the sensor's cameras and plate (left camera frame); the maps'
-  // rectified camera must be the rig's (rectify_stereo_rig at the maps' size):
-  // InputError naming `where` otherwise.
+  // rectified camera must be a rectification of the rig (rectify_stereo_rig,
+  // or stereo_rectification's stereoRectify): InputError naming `where` otherwise.
   DisparityConversion(const optics::StereoRig& rig, const Eigen::Isometry3d& sensor_from_left, bool refraction);
 
   // The disparity Eq. 7 gives at left pixel (x, y), or nothing when the
@@ -45,7 +45,8 @@ class DisparityConversion {
   // nothing when it cannot be triangulated.
   std::optional<Eigen::Vector3d> point_mm(const RectifiedStereo& rect, double x, double y, double d) const;
 
-  // Checks that the maps' camera is the rig's rectified pair at the maps' size.
+  // Checks that the maps' camera rectifies this rig: parallel rectified
+  // frames, x along the baseline, the rig's baseline.
   void require_same_camera(const RectifiedStereo& rect, const std::string& where) const;
 
  private:

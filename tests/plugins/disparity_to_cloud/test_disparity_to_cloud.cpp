@@ -91,8 +91,21 @@ TEST(DisparityConversion, QReprojectionPutsEveryPixelOnItsPlane) {
   EXPECT_LT(worst, 1e-6) << "mm";
 }
 
-TEST(DisparityConversion, RefractiveConversionPutsEveryPixelOnItsPlane) {
-  const Sensor s;
+// Another rectification of the same rig, as stereoRectify would give a
+// recorded pair: both views turned 4 degrees more about the baseline, a
+// shorter focal length, other principal points.
+RectifiedStereo turned_rectification(const RectifiedStereo& rect) {
+  RectifiedStereo other = rect;
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(4.0 * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  other.left_rect_from_left = turn * rect.left_rect_from_left;
+  other.right_rect_from_right = turn * rect.right_rect_from_right;
+  other.fx_px *= 0.9, other.fy_px *= 0.92;
+  other.cx_left_px += 7, other.cx_right_px += 31, other.cy_px -= 5;
+  return other;
+}
+
+// The refractive conversion of `rect`'s pixels onto kPlane, against where the rays meet it.
+void expect_refractive_conversion_exact(const Sensor& s, const RectifiedStereo& rect) {
   const DisparityConversion refractive = s.conversion(true), q = s.conversion(false);
   const Eigen::Isometry3d left_from_sensor = s.gelstereo.sensor_from_left_camera().inverse();
   double worst = 0, q_worst = 0, q_sum = 0, row_offset = 0;
@@ -100,21 +113,21 @@ TEST(DisparityConversion, RefractiveConversionPutsEveryPixelOnItsPlane) {
   for (int y = 10; y < kHeight; y += 11)
     for (int x = 10; x < kWidth; x += 11) {
       // Where the left pixel's refracted ray meets the plane, and where the right view sees that point.
-      const auto ray = optics::rectified_silicone_ray(*s.rig, s.rect, optics::StereoSide::Left, {x, y});
+      const auto ray = optics::rectified_silicone_ray(*s.rig, rect, optics::StereoSide::Left, {x, y});
       ASSERT_EQ(ray.status, optics::TraceStatus::Ok);
       const Eigen::Vector3d o = s.gelstereo.sensor_from_left_camera() * ray.origin_mm;
       const Eigen::Vector3d dir = s.gelstereo.sensor_from_left_camera().linear() * ray.direction;
       const Eigen::Vector3d on_plane = o + (kPlaneOffsetMm - kPlaneNormal.dot(o)) / kPlaneNormal.dot(dir) * dir;
-      const auto right = optics::project_rectified_refracted(*s.rig, s.rect, optics::StereoSide::Right,
+      const auto right = optics::project_rectified_refracted(*s.rig, rect, optics::StereoSide::Right,
                                                              left_from_sensor * on_plane);
       if (right.status != optics::TraceStatus::Ok) continue;
       const double d = x - right.pixel_px.x();
-      const auto p = refractive.point_mm(s.rect, x, y, d);
+      const auto p = refractive.point_mm(rect, x, y, d);
       ASSERT_TRUE(p);
       row_offset = std::max(row_offset, std::abs(right.pixel_px.y() - y));
       worst = std::max(worst, (*p - on_plane).norm());
       // The paper's straight rays on the same disparity: what refraction gains.
-      const auto p_q = q.point_mm(s.rect, x, y, d);
+      const auto p_q = q.point_mm(rect, x, y, d);
       ASSERT_TRUE(p_q);
       q_worst = std::max(q_worst, (*p_q - on_plane).norm());
       q_sum += (*p_q - on_plane).norm();
@@ -126,6 +139,18 @@ TEST(DisparityConversion, RefractiveConversionPutsEveryPixelOnItsPlane) {
             << " mm; Q (straight rays) mean " << q_sum / n << " mm, worst " << q_worst << " mm over " << n
             << " pixels; the right view sees the points up to " << row_offset << " px off the left pixel's row\n";
   EXPECT_GT(q_worst, 0.1);  // the plate matters: straight rays miss by far more
+}
+
+TEST(DisparityConversion, RefractiveConversionPutsEveryPixelOnItsPlane) {
+  const Sensor s;
+  expect_refractive_conversion_exact(s, s.rect);
+}
+
+TEST(DisparityConversion, AnyRectificationOfTheRigConvertsExactly) {
+  const Sensor s;
+  const RectifiedStereo other = turned_rectification(s.rect);
+  EXPECT_NO_THROW(s.conversion(true).require_same_camera(other, "maps"));
+  expect_refractive_conversion_exact(s, other);
 }
 
 TEST(DisparityConversion, EquationSevenAveragesTheRightDisparityWhereTheLeftPoints) {
@@ -185,7 +210,11 @@ TEST(DisparityToCloudStage, RefusesMapsItCannotUse) {
 
   DenseMaps other_camera = row_plane_maps(s.rect);
   other_camera.camera.baseline_mm *= 1.1;
-  EXPECT_NE(message(other_camera).find("not the sensor file's rectified pair"), std::string::npos);
+  EXPECT_NE(message(other_camera).find("is not a rectification of the sensor file's cameras"), std::string::npos);
+  DenseMaps other_rotation = row_plane_maps(s.rect);  // one view turned: not this rig's rectified pair
+  other_rotation.camera.right_rect_from_right =
+      Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).toRotationMatrix() * s.rect.right_rect_from_right;
+  EXPECT_NE(message(other_rotation).find("rectified frames are not parallel"), std::string::npos);
 
   DenseMaps no_right = row_plane_maps(s.rect);
   no_right.disparity_right_px.release();

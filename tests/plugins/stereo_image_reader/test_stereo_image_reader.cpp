@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "pipeline_fixture.hpp"
+#include "stage_harness.hpp"
 #include "touchcloud/plugin_registry.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 
@@ -99,4 +100,21 @@ TEST_F(StereoImageReader, IterationInThePathWalksThroughARecordedSequence) {
                         "     params: {left: 'nowhere/l_{iteration}.png', right: r.png}}\n");
   ASSERT_FALSE(d.empty());
   EXPECT_TRUE(mentions(d[0], "nowhere does not exist")) << d[0].str();
+}
+
+TEST_F(StereoImageReader, ColourReadsBgrAndGreyStaysTheDefault) {
+  cv::Mat bgr(80, 120, CV_8UC3, cv::Scalar(10, 20, 200));  // a red pair
+  save("left.png", bgr);
+  save("right.png", bgr);
+  touchcloud::test::StageHarness grey("stereo_image_reader",
+                                      {{"left", (dir_ / "left.png").string()}, {"right", (dir_ / "right.png").string()}});
+  grey.configure();
+  EXPECT_EQ(grey.process_one<StereoFramePtr>({}, "frame")->left.type(), CV_8UC1);
+  touchcloud::test::StageHarness colour("stereo_image_reader", {{"left", (dir_ / "left.png").string()},
+                                                                {"right", (dir_ / "right.png").string()},
+                                                                {"colour", true}});
+  colour.configure();
+  const auto frame = colour.process_one<StereoFramePtr>({}, "frame");
+  ASSERT_EQ(frame->right.type(), CV_8UC3);
+  EXPECT_EQ(frame->right.at<cv::Vec3b>(40, 60), cv::Vec3b(10, 20, 200));
 }

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "conversion/disparity_conversion.hpp"
+#include "touchcloud/parallel_ranges.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/sensor/sensor_parameters.hpp"
 #include "touchcloud/types/dense_maps.hpp"
@@ -18,6 +19,7 @@ class DisparityToCloud final : public Stage {
   sensor::SensorParameters sensor_;
   bool refraction_ = false;
   DisparitySource source_ = DisparitySource::Average;
+  int threads_ = 0;
   sensor::GelStereoSensor sensor_read_;  // read at check
   std::optional<disparity_to_cloud::DisparityConversion> conversion_;
   disparity_to_cloud::ConversionCounts counts_;
@@ -31,6 +33,10 @@ class DisparityToCloud final : public Stage {
     p.add("disparity", source_, DisparitySource::Average,
           {{"average", DisparitySource::Average}, {"left", DisparitySource::Left}})
         .doc("average the left disparity with the right view's where it points (Eq. 7), or the left map alone");
+    p.add("threads", threads_, 0)
+        .at_least(0)
+        .doc("threads converting pixels (rows split between them; the cloud is the same for any count); 0: every "
+             "core");
   }
 
   void declare_ports(PortSet& ports) override {
@@ -74,24 +80,40 @@ class DisparityToCloud final : public Stage {
     conversion_->require_same_camera(maps.camera, where);
     if (cv::countNonZero(maps.valid_left) == 0)
       throw InputError(where + ": the left disparity map has no valid pixel (frame " + std::to_string(maps.index) + ")");
+    // Rows in contiguous blocks, one per thread, each row's points apart;
+    // joined in row order, so the cloud is the same whatever the thread count.
+    struct Row {
+      std::vector<std::pair<int, Eigen::Vector3d>> points;
+      disparity_to_cloud::ConversionCounts counts;
+    };
+    std::vector<Row> rows(static_cast<std::size_t>(size.height));
+    for_each_block(rows.size(), resolve_threads(threads_), 16, [&](std::size_t first, std::size_t last) {
+      for (int y = static_cast<int>(first); y < static_cast<int>(last); ++y)
+        for (int x = 0; x < size.width; ++x) {
+          Row& b = rows[static_cast<std::size_t>(y)];
+          if (mask && !mask->at<std::uint8_t>(y, x)) continue;
+          if (!maps.valid_left.at<std::uint8_t>(y, x)) continue;
+          ++b.counts.pixels;
+          const auto d = conversion_->disparity_px(maps, x, y, source_);
+          if (!d) {
+            ++b.counts.no_right;
+            continue;
+          }
+          const auto p = conversion_->point_mm(maps.camera, x, y, *d);
+          if (!p) {
+            ++b.counts.not_triangulated;
+            continue;
+          }
+          b.points.emplace_back(y * size.width + x, *p);
+        }
+    });
     std::vector<std::pair<int, Eigen::Vector3d>> out;
-    for (int y = 0; y < size.height; ++y)
-      for (int x = 0; x < size.width; ++x) {
-        if (mask && !mask->at<std::uint8_t>(y, x)) continue;
-        if (!maps.valid_left.at<std::uint8_t>(y, x)) continue;
-        ++counts_.pixels;
-        const auto d = conversion_->disparity_px(maps, x, y, source_);
-        if (!d) {
-          ++counts_.no_right;
-          continue;
-        }
-        const auto p = conversion_->point_mm(maps.camera, x, y, *d);
-        if (!p) {
-          ++counts_.not_triangulated;
-          continue;
-        }
-        out.emplace_back(y * size.width + x, *p);
-      }
+    for (const Row& b : rows) {
+      out.insert(out.end(), b.points.begin(), b.points.end());
+      counts_.pixels += b.counts.pixels;
+      counts_.no_right += b.counts.no_right;
+      counts_.not_triangulated += b.counts.not_triangulated;
+    }
     return out;
   }
 

@@ -241,3 +241,21 @@ TEST(DisparityToCloudStage, TactileOutputNeedsTheReferenceMaps) {
   EXPECT_EQ(tactile->reference->size(), tactile->points->size());
   EXPECT_EQ(*std::max_element(tactile->displacement_mm.begin(), tactile->displacement_mm.end()), 0.0);
 }
+
+TEST(DisparityToCloudStage, GivesTheSameCloudForAnyThreadCount) {
+  const Sensor s;
+  auto maps = std::make_shared<DenseMaps>(row_plane_maps(s.rect));
+  maps->valid_left(cv::Rect(0, 0, kWidth, 100)).setTo(0);  // uneven work between the threads' rows
+  std::vector<std::vector<float>> clouds;
+  for (std::int64_t threads : {1, 2, 3}) {
+    StageHarness h("disparity_to_cloud", {{"sensor", s.file.string()}, {"refraction", true}, {"threads", threads}});
+    h.configure();
+    const auto cloud = h.process_one<CloudConstPtr>({{"disparity", DenseMapsPtr(maps)}}, "cloud");
+    std::vector<float> xyz;
+    for (const auto& p : *cloud) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    clouds.push_back(std::move(xyz));
+  }
+  ASSERT_GT(clouds[0].size(), 3u * 100000);
+  EXPECT_EQ(clouds[1], clouds[0]);
+  EXPECT_EQ(clouds[2], clouds[0]);
+}

@@ -44,7 +44,7 @@
 
 #include <Eigen/Geometry>
 
-#include "parallel_ranges.hpp"
+#include "touchcloud/parallel_ranges.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud::scoring {
@@ -310,11 +310,6 @@ Points to_points(const PointCloud& cloud) {
   out.reserve(cloud.size());
   for (const auto& p : cloud.points) out.emplace_back(p.x, p.y, p.z);
   return out;
-}
-
-int resolve_threads(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
 NearestPointIndex::NearestPointIndex(Points points, int threads) : impl_(std::make_unique<Impl>()) {

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "area_lookup.hpp"
-#include "parallel_ranges.hpp"
+#include "touchcloud/parallel_ranges.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "touchcloud/parallel_ranges.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 
 namespace touchcloud::scoring {
@@ -25,8 +26,7 @@ Points to_points(const PointCloud& cloud);
 // faster, as their memory accesses hit the cache.
 void sort_by_locality(Points& points);
 
-// The number of threads to use: `requested`, or every hardware thread for 0.
-int resolve_threads(int requested);
+using touchcloud::resolve_threads;  // touchcloud/parallel_ranges.hpp
 
 // What the searches from one set of queries proved, kept for the next,
 // similar set (the next touch's surface): for each query, its nearest point

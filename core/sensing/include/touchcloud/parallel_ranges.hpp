@@ -8,7 +8,13 @@
 #include <thread>
 #include <vector>
 
-namespace touchcloud::scoring {
+namespace touchcloud {
+
+// The number of threads to use: `requested`, or every hardware thread for 0.
+inline int resolve_threads(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
 
 // Runs body(begin, end) on `threads` contiguous blocks of [0, n). Blocks
 // smaller than `min_block` items are merged, so tiny inputs stay on one thread.
@@ -36,4 +42,4 @@ void for_each_block(std::size_t n, int threads, std::size_t min_block, Body body
     if (e) std::rethrow_exception(e);
 }
 
-}  // namespace touchcloud::scoring
+}  // namespace touchcloud

@@ -6,8 +6,8 @@
 //                                (lr 0: without the left-right check, the
 //                                same OpenCV calls the Python peer makes)
 //   OpenCvCalls/<method>/<size>  those OpenCV calls alone, in C++
-//   CloudRefraction/<size>       disparity_to_cloud through the plate, the
-//                                true contact region of the frame
+//   CloudRefraction/<size>/<t>   disparity_to_cloud through the plate, the
+//                                true contact region of the frame, t threads
 //   DenseFrame256                contact_mask + SGBM (block 7, checked) +
 //                                disparity_to_cloud (refraction) at 256 x 256;
 //                                the cloud of the true contact region, so that
@@ -167,13 +167,15 @@ void OpenCvCalls(benchmark::State& state, const std::string& method) {
 void CloudRefraction(benchmark::State& state) {
   const int size = static_cast<int>(state.range(0));
   const Press& p = press(size);
-  LoadedStage stage("disparity_to_cloud", {{"sensor", kScene}, {"refraction", true}});
+  LoadedStage stage("disparity_to_cloud",
+                    {{"sensor", kScene}, {"refraction", true}, {"threads", std::int64_t{state.range(1)}}});
   std::size_t points = 0;
   for (auto _ : state) {
     auto cloud = std::any_cast<CloudConstPtr>(stage.run({{"disparity", p.truth}, {"mask", p.truth}}, "cloud"));
     points = cloud->size();
   }
   state.counters["points"] = static_cast<double>(points);
+  state.counters["threads"] = static_cast<double>(state.range(1));
   fps(state);
 }
 
@@ -181,7 +183,7 @@ void DenseFrame256(benchmark::State& state) {
   const Press& p = press(0);
   LoadedStage mask("contact_mask", {{"threshold_grey", 30.0}});
   LoadedStage match("stereo_disparity", matcher_params("sgbm", 0, true));
-  LoadedStage cloud("disparity_to_cloud", {{"sensor", kScene}, {"refraction", true}});
+  LoadedStage cloud("disparity_to_cloud", {{"sensor", kScene}, {"refraction", true}, {"threads", std::int64_t{1}}});
   std::size_t points = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(mask.run({{"frame", p.frame}, {"reference", p.reference}}, "mask"));
@@ -209,7 +211,7 @@ BENCHMARK_CAPTURE(Match, sgbm, std::string("sgbm"))->ArgsProduct({{0, 1}, {0, 1}
 BENCHMARK_CAPTURE(Match, bm, std::string("bm"))->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(OpenCvCalls, sgbm, std::string("sgbm"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(OpenCvCalls, bm, std::string("bm"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(CloudRefraction)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(CloudRefraction)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond);
 BENCHMARK(DenseFrame256)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {

@@ -1,7 +1,8 @@
 #!/bin/sh
 # The colour-pattern GelStereo's per-frame stages against the same OpenCV
 # calls from OpenCV's Python binding, in one run, both on one core
-# (taskset -c 0, one OpenCV thread each side):
+# (taskset -c 0, one OpenCV thread each side); disparity_to_cloud also on
+# two threads:
 #
 #   benchmarks/run_dense_stereo_bench.sh [BUILD_DIR]
 #
@@ -22,15 +23,18 @@ command -v taskset >/dev/null 2>&1 || pin=""
 data=$(mktemp -d)
 trap 'rm -rf "$data"' EXIT
 "$bench" --write-data "$data"
-$pin "$bench" --benchmark_repetitions="$repeats" --benchmark_min_time=1 --benchmark_format=json >"$data/ours.json"
+$pin "$bench" --benchmark_filter='Match|OpenCvCalls|DenseFrame' --benchmark_repetitions="$repeats" \
+  --benchmark_min_time=1 --benchmark_format=json >"$data/ours.json"
+# The conversion may use every core (its threads parameter): not pinned.
+"$bench" --benchmark_filter=CloudRefraction --benchmark_repetitions="$repeats" --benchmark_min_time=1 \
+  --benchmark_format=json >"$data/cloud.json"
 $pin "$python" "$here/peers/stereo_opencv.py" "$data" --repeats "$repeats" --json >"$data/peer.json"
 
 "$python" - "$data" "$repeats" <<'PY'
 import json, sys
 data, repeats = sys.argv[1], sys.argv[2]
-doc = json.load(open(f"{data}/ours.json"))
 ours = {}
-for b in doc["benchmarks"]:
+for b in json.load(open(f"{data}/ours.json"))["benchmarks"] + json.load(open(f"{data}/cloud.json"))["benchmarks"]:
     if b.get("run_type") != "iteration":
         continue
     if b["run_name"] not in ours or b["real_time"] < ours[b["run_name"]]["real_time"]:
@@ -44,20 +48,25 @@ if "skipped" in peer:
 else:
     print(f"peer: OpenCV {peer['opencv']} Python binding (NumPy {peer['numpy']}, Python {peer['python']}), "
           f"{peer['opencv_threads']} OpenCV thread")
+cpu = lambda name: ours[name]["cpu_time"]
+print("Wall time (ms per frame), and in brackets CPU time, which a busy machine disturbs less:")
 print("| matcher | size | stage, no LR check | stage, LR check | same calls, C++ | same calls, Python | stage / Python |")
 print("|---|---|---|---|---|---|---|")
 for method in ("sgbm", "bm"):
     for size in (0, 1):
-        stage, checked = ms(f"Match/{method}/{size}/0"), ms(f"Match/{method}/{size}/1")
-        calls = ms(f"OpenCvCalls/{method}/{size}")
-        py = peer.get("ms_per_frame", {}).get(f"{method}/{size}")
-        ratio = f"{stage / py:.3f}" if py else "-"
-        print(f"| {method.upper()} block 7 | {sizes[size]} | {stage:.2f} | {checked:.2f} | {calls:.2f} | "
-              f"{py:.2f} | {ratio} |" if py else f"| {method} | {sizes[size]} | {stage:.2f} | {checked:.2f} | {calls:.2f} | - | - |")
-for size in (0, 1):
-    b = ours[f"CloudRefraction/{size}"]
-    print(f"disparity_to_cloud through the plate, {sizes[size]}, contact region ({b['points']:.0f} points): "
-          f"{b['real_time']:.2f} ms")
+        key = f"{method}/{size}"
+        stage, checked, calls = f"Match/{key}/0", f"Match/{key}/1", f"OpenCvCalls/{key}"
+        py, py_cpu = peer.get("ms_per_frame", {}).get(key), peer.get("cpu_ms_per_frame", {}).get(key)
+        cells = [f"{ms(n):.2f} ({cpu(n):.2f})" for n in (stage, checked, calls)]
+        if py:
+            cells += [f"{py:.2f} ({py_cpu:.2f})", f"{ms(stage) / py:.3f} ({cpu(stage) / py_cpu:.3f})"]
+        else:
+            cells += ["-", "-"]
+        print(f"| {method.upper()} block 7 | {sizes[size]} | " + " | ".join(cells) + " |")
+for size, threads in ((0, 1), (1, 1), (1, 2)):
+    b = ours[f"CloudRefraction/{size}/{threads}"]
+    print(f"disparity_to_cloud through the plate, {sizes[size]}, contact region ({b['points']:.0f} points), "
+          f"{b['threads']:.0f} threads: {b['real_time']:.2f} ms ({b['cpu_time']:.2f} ms CPU of this thread)")
 b = ours["DenseFrame256"]
 print(f"dense frame at 256 x 256 (contact_mask + SGBM with LR check + cloud through the plate, {b['points']:.0f} "
       f"points): {b['real_time']:.2f} ms = {1e3 / b['real_time']:.0f} frames/s")

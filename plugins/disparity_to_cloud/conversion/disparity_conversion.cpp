@@ -69,28 +69,37 @@ std::optional<Eigen::Vector3d> DisparityConversion::point_mm(const RectifiedSter
   if (refraction_) {
     // Through the plate, rectified rows are not exactly epipolar: the right
     // view sees the left ray's point a little above or below row y. The
-    // disparity fixes only the right column x - d; the row is found by
-    // triangulating, projecting the left ray's closest point into the right
-    // view and taking its row, until the row stops changing (the right ray
-    // then meets the left one there). The left ray's image runs nearly along
-    // a row, so each step shrinks the row's error by that image's slope.
+    // disparity fixes only the right column x - d; the row is the one whose
+    // right ray meets the left ray: the root of the rays' signed distance
+    // along their common normal, a smooth, nearly linear function of the row,
+    // found by the secant method from rows y and y + 1 (each step one ray
+    // traced back through the plate, no forward projection).
     const auto l = optics::rectified_silicone_ray(rig_, rect, optics::StereoSide::Left, {x, y});
     if (l.status != optics::TraceStatus::Ok) return std::nullopt;
-    double right_row = y;
-    Eigen::Vector3d on_left = l.origin_mm;
-    for (int k = 0; k < kMaxRowIterations; ++k) {
-      const auto r = optics::rectified_silicone_ray(rig_, rect, optics::StereoSide::Right, {x - d, right_row});
+    optics::SiliconeRay r;
+    const auto miss_mm = [&](double row) -> std::optional<double> {
+      r = optics::rectified_silicone_ray(rig_, rect, optics::StereoSide::Right, {x - d, row});
       if (r.status != optics::TraceStatus::Ok) return std::nullopt;
-      const auto t = optics::triangulate_rays(l.origin_mm, l.direction, r.origin_mm, r.direction);
-      if (t.status != optics::TriangulationStatus::Ok) return std::nullopt;
-      on_left = l.origin_mm + t.s_left_mm * l.direction.normalized();
-      const auto seen = optics::project_rectified_refracted(rig_, rect, optics::StereoSide::Right, on_left);
-      if (seen.status != optics::TraceStatus::Ok && seen.status != optics::TraceStatus::OutOfView) return std::nullopt;
-      const double change = std::abs(seen.pixel_px.y() - right_row);
-      right_row = seen.pixel_px.y();
-      if (change < kRowTolerancePx) break;
+      const Eigen::Vector3d normal = l.direction.cross(r.direction);
+      const double length = normal.norm();
+      if (!(length > 0)) return std::nullopt;
+      return (r.origin_mm - l.origin_mm).dot(normal) / length;
+    };
+    double row0 = y, row1 = y + 1;
+    std::optional<double> miss0 = miss_mm(row0);
+    std::optional<double> miss1 = miss_mm(row1);  // r: the ray of row1, from here on
+    bool converged = false;
+    for (int k = 0; k < kMaxRowIterations && miss0 && miss1 && !converged; ++k) {
+      if (*miss1 == *miss0) break;  // flat: no root to head for
+      const double row2 = row1 - *miss1 * (row1 - row0) / (*miss1 - *miss0);
+      converged = std::abs(row2 - row1) < kRowTolerancePx;
+      row0 = row1, miss0 = miss1;
+      row1 = row2, miss1 = miss_mm(row1);
     }
-    left = on_left;
+    if (!converged || !miss1) return std::nullopt;
+    const auto t = optics::triangulate_rays(l.origin_mm, l.direction, r.origin_mm, r.direction);
+    if (t.status != optics::TriangulationStatus::Ok) return std::nullopt;
+    left = l.origin_mm + t.s_left_mm * l.direction.normalized();
   } else {
     // Eq. 8-9.
     const Eigen::Vector4d p = rect.q() * Eigen::Vector4d(x, y, d, 1.0);

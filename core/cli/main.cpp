@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "touchcloud/blas_environment.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/interrupt_cleanup.hpp"
 #include "touchcloud/version.hpp"
@@ -32,12 +33,10 @@ int main(int argc, char** argv) {
   // First, before any thread starts: Ctrl-C and SIGTERM remove the staging
   // folder of the run in progress.
   touchcloud::clean_up_on_interrupt();
-  // OpenBLAS (loaded with the GP plugin) keeps its worker threads spinning
-  // for ~0.1 s after each call, taking a core from the stages that follow
-  // (the per-touch scoring, on both cores). Let them sleep at once unless the
-  // user chose otherwise; it is read when the library loads. Fox mask main
-  // job: 4.2-4.3 s against 4.4-5.1 s.
-  setenv("OPENBLAS_THREAD_TIMEOUT", "4", 0);
+  // OpenBLAS (loaded with the GP plugin) reads its settings when it loads:
+  // its idle threads sleep at once (fox mask main job: 4.2-4.3 s against
+  // 4.4-5.1 s), and an AVX-512 CPU gets AVX-512 kernels.
+  touchcloud::prepare_blas_environment();
   CLI::App app{"touchcloud " + std::string(touchcloud::kVersion) +
                ": point clouds and shapes from visuotactile sensors"};
   app.set_version_flag("--version", std::string(touchcloud::kVersion));

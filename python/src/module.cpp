@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
+#include "touchcloud/blas_environment.hpp"
 #include "touchcloud/version.hpp"
 #include "value_arrays.hpp"
 
@@ -35,9 +36,9 @@ void raise(const py::object& type, const std::exception& e, const std::vector<Di
 
 PYBIND11_MODULE(touchcloud, m) {
   using namespace touchcloud::python;
-  // As the CLI does (core/cli/main.cpp): OpenBLAS's idle threads sleep at
-  // once instead of spinning for 0.1 s; read when the GP plugin loads it.
-  setenv("OPENBLAS_THREAD_TIMEOUT", "4", 0);
+  // As the CLI does (core/cli/main.cpp): OpenBLAS's settings, read when the
+  // GP plugin loads it.
+  touchcloud::prepare_blas_environment();
   m.doc() = "touchcloud: point clouds and shapes from visuotactile sensors (units: mm)";
   m.attr("__version__") = touchcloud::kVersion;
   static py::exception<touchcloud::InputError> error_base(m, "Error");  // the base of the three below

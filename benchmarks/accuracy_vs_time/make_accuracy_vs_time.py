@@ -17,6 +17,11 @@ goes) and accuracy_vs_time.png/.svg (accuracy against time, Pareto front
 marked). Usage, from the repository root after building:
 
   benchmarks/accuracy_vs_time/make_accuracy_vs_time.py --out benchmarks/accuracy_vs_time
+  benchmarks/accuracy_vs_time/make_accuracy_vs_time.py --out DIR --ranks 2   # each sweep under mpirun -n 2
+
+With --ranks N every sweep runs under mpirun -n N (touchcloud sweep hands
+each run to the next free rank); the accuracies are the same, the times
+differ.
 """
 import argparse
 import csv
@@ -26,6 +31,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from mpi_launch import mpirun_command  # noqa: E402
 from plot_sweep import pareto_front  # noqa: E402
 
 PIPELINE = "pipelines/fox_mask_active_pixels.yaml"
@@ -45,6 +51,8 @@ STAGE_TIMES = ["time_sensor_s", "time_match_s", "time_rsrt_s", "time_fit_s", "ti
 
 def run_sweep(args, name, varies, out):
     cmd = [args.touchcloud, "sweep", PIPELINE, "--repeats", str(args.repeats), "--out", out]
+    if args.ranks > 1:  # the sweep spreads its runs over the ranks; rank 0 writes the same files
+        cmd = mpirun_command(args.ranks) + cmd
     for v in varies:
         cmd += ["--vary", v]
     print(f"{name}: {' '.join(cmd)}", file=sys.stderr, flush=True)
@@ -65,6 +73,7 @@ def main():
     ap.add_argument("--touchcloud", default="build/bin/touchcloud")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--ranks", type=int, default=1, help="MPI ranks each sweep spreads its runs over (mpirun -n N)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
 

@@ -30,6 +30,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from mpi_launch import mpirun_command  # noqa: E402
+
 # The methods of Table 1 as overrides of the "Ours" pipelines.
 METHODS = {
     "SP": ["salient.keep=deepest"],
@@ -150,9 +153,7 @@ def main():
     if args.ranks > 1 and size == 1:
         argv = [a for i, a in enumerate(sys.argv[1:]) if a != "--ranks" and not a.startswith("--ranks=")
                 and not (i > 0 and sys.argv[i] == "--ranks")]
-        root = ["--allow-run-as-root"] if os.geteuid() == 0 else []
-        cmd = ["mpirun", "-n", str(args.ranks), "--oversubscribe", "--bind-to", "none", *root,
-               sys.executable, os.path.abspath(__file__), *argv]
+        cmd = mpirun_command(args.ranks) + [sys.executable, os.path.abspath(__file__), *argv]
         sys.exit(subprocess.run(cmd).returncode)
 
     runs = []

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mpi_dispatch.hpp"
+#include "progress_line.hpp"
 #include "score_inputs.hpp"
 #include "touchcloud/scoring/cloud_metrics.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
@@ -53,54 +54,6 @@ struct Outcome {
   RunPlace place;         // who scored it
 };
 
-// A one-line count on stderr, redrawn a few times a second, only when stderr
-// is a terminal and once the batch has run long enough for it to matter.
-class Progress {
- public:
-  explicit Progress(std::size_t total) : total_(total) {
-    if (::isatty(STDERR_FILENO) == 1) ticker_ = std::thread([this] { tick(); });
-  }
-  ~Progress() { finish(); }
-  void stage(const std::string& what) {
-    std::lock_guard lock(mutex_);
-    what_ = what;
-  }
-  void done_one() {
-    std::lock_guard lock(mutex_);
-    ++done_;
-  }
-  // Stops redrawing and clears the line, before the results are printed.
-  void finish() {
-    {
-      std::lock_guard lock(mutex_);
-      stopped_ = true;
-    }
-    wake_.notify_all();
-    if (ticker_.joinable()) ticker_.join();
-  }
-
- private:
-  void tick() {
-    std::unique_lock lock(mutex_);
-    bool drawn = false;
-    while (!wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stopped_; })) {
-      if (seconds_since(start_) < 1.0) continue;
-      std::cerr << "\r\033[Kscored " << done_ << "/" << total_ << " estimates" << (what_.empty() ? "" : "; " + what_)
-                << std::flush;
-      drawn = true;
-    }
-    if (drawn) std::cerr << "\r\033[K" << std::flush;
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::size_t total_, done_ = 0;
-  bool stopped_ = false;
-  std::string what_;
-  Clock::time_point start_ = Clock::now();
-  std::thread ticker_;
-};
-
 struct Options {
   std::string gt;
   std::vector<std::string> estimates;
@@ -111,6 +64,7 @@ struct Options {
   double fscore_threshold_mm = scoring::kDefaultFscoreThresholdMm;
   int threads = 0;
   bool drop_nonfinite = false;
+  bool progress = false;
 };
 
 NonFinitePoints nonfinite_rule(const Options& o) {
@@ -155,7 +109,7 @@ void score_one(Outcome& out, const scoring::GroundTruth& gt, const scoring::Scor
 // Scores every outcome in `group` against one ground truth: several estimates
 // at once when there are enough of them, else all threads on each one.
 void score_group(std::vector<Outcome*>& group, const scoring::GroundTruth& gt, scoring::ScoreOptions options,
-                 const Options& o, int threads, Progress& progress) {
+                 const Options& o, int threads, ProgressLine& progress) {
   const int workers = static_cast<int>(std::min<std::size_t>(threads, group.size()));
   options.threads = std::max(1, threads / workers);
   std::atomic<std::size_t> next{0};
@@ -318,7 +272,7 @@ void decode(const nlohmann::json& j, Outcome& r, GroundTruthSummary& g, const sc
 void score_on_ranks(RankTeam& team, std::vector<Outcome>& outcomes, const std::vector<std::string>& gt_order,
                     std::map<std::string, std::vector<Outcome*>>& groups,
                     std::map<std::string, GroundTruthSummary>& summaries, scoring::ScoreOptions options,
-                    const Options& o, Progress& progress) {
+                    const Options& o, ProgressLine& progress) {
   const int threads = o.threads > 0 ? o.threads
                                     : std::max(1, scoring::resolve_threads(0) / team.ranks_on_host());
   options.threads = threads;
@@ -398,7 +352,7 @@ int run_score(const Options& o) {
   }
   std::map<std::string, GroundTruthSummary> summaries;
   std::vector<const GroundTruthSummary*> gts;
-  Progress progress(outcomes.size());
+  ProgressLine progress(outcomes.size(), "estimates", o.progress, team.rank() == 0);
   for (const auto& r : outcomes)
     if (!r.error.empty()) progress.done_one();
   if (team.size() > 1) {
@@ -473,6 +427,8 @@ Action* add_score_verb(CLI::App& app) {
                   "the manifest)")
       ->required();
   cmd->add_flag("--json", o.json, "print a JSON array with one record per estimate instead of a table");
+  cmd->add_flag("--progress", o.progress,
+                "show progress (estimates scored, rate, time left) also when stderr is not a terminal (logs, CI)");
   cmd->add_option("--samples", o.samples,
                   "points sampled from a mesh ground truth (default 0: 100 per mm^2 of surface, i.e. 0.1 mm mean "
                   "spacing, at least 100000 and at most 10000000; see docs/scoring.md)")

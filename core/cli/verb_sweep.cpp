@@ -10,9 +10,11 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "mpi_dispatch.hpp"
+#include "progress_line.hpp"
 #include "sweep_grid.hpp"
 #include "sweep_rows.hpp"
 #include "touchcloud/pipeline.hpp"
@@ -59,7 +61,7 @@ Action* add_sweep_verb(CLI::App& app) {
     std::vector<std::string> vary, sets;
     int repeats = 1;
     std::uint64_t seed = 0;
-    bool resume = false;
+    bool resume = false, progress = false;
   };
   static Options o;
   static Action action;
@@ -71,6 +73,8 @@ Action* add_sweep_verb(CLI::App& app) {
       ->check(CLI::Range(1, 1000))->capture_default_str();
   cmd->add_option("--seed", o.seed, "seed of the first repeat")->check(seed_value())->capture_default_str();
   cmd->add_option("--out", o.out, "output folder: sweep.csv, sweep_summary.csv, the plot, runs/")->required();
+  cmd->add_flag("--progress", o.progress,
+                "show progress (runs done, rate, time left) also when stderr is not a terminal (logs, CI)");
   cmd->add_flag("--resume", o.resume,
                 "keep the successful runs an earlier, stopped sweep left in DIR/sweep.csv and run only the others");
   cmd->add_option("--accuracy", o.accuracy,
@@ -151,18 +155,24 @@ Action* add_sweep_verb(CLI::App& app) {
       };
       std::atomic<std::size_t> saved{resumed};  // read by the stop message, from rank 0's dispatch thread
       auto last_save = std::chrono::steady_clock::now();
+      // Rank 0 counts every rank's runs.
+      std::optional<ProgressLine> progress;
+      if (team.rank() == 0) progress.emplace(jobs.size(), "runs", o.progress);
       const auto finished = [&](std::size_t job, const RunPlace& place, const std::string& text) {
         RunRow row = deserialise(text);
         row.rank = place.rank;
         row.host = place.host;
-        std::cerr << "[" << rows.size() + 1 << "/" << total << "]";
-        for (const auto& ov : settings[row.setting]) std::cerr << " " << ov.key << "=" << ov.value;
-        std::cerr << " seed " << row.seed << ": ";
+        std::ostringstream line;
+        line << "[" << rows.size() + 1 << "/" << total << "]";
+        for (const auto& ov : settings[row.setting]) line << " " << ov.key << "=" << ov.value;
+        line << " seed " << row.seed << ": ";
         if (row.error.empty())
-          std::cerr << std::fixed << std::setprecision(3) << row.wall_time_s << " s" << std::defaultfloat;
+          line << std::fixed << std::setprecision(3) << row.wall_time_s << " s" << std::defaultfloat;
         else
-          std::cerr << "failed: " << row.error;
-        std::cerr << (team.size() > 1 ? " (rank " + std::to_string(place.rank) + ")" : "") << "\n";
+          line << "failed: " << row.error;
+        line << (team.size() > 1 ? " (rank " + std::to_string(place.rank) + ")" : "");
+        progress->print_above(line.str());
+        progress->done_one();
         rows[job] = std::move(row);
         if (std::chrono::steady_clock::now() - last_save > std::chrono::seconds(1)) {
           write_atomically(out / "sweep.csv", csv_table(axes, settings, table(), false));
@@ -176,6 +186,7 @@ Action* add_sweep_verb(CLI::App& app) {
       };
       team.run(jobs, work, finished, describe, on_stop);
       if (team.rank() != 0) return kExitOk;  // rank 0 writes every output
+      progress->finish();
 
       const std::vector<RunRow> all = table();
       write_atomically(out / "sweep.csv", csv_table(axes, settings, all, false));

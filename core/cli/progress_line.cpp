@@ -1,0 +1,93 @@
+#include "progress_line.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace touchcloud::cli {
+
+namespace {
+
+std::string duration_text(double s) {
+  char buf[32];
+  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 5400) std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  else std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  return buf;
+}
+
+// In a terminal: redrawn 4 times a second, from 1 s on (a short batch shows
+// nothing). In a log (--progress): a line every 5 s, and the last at the end.
+constexpr std::chrono::milliseconds kTerminalPeriod{250}, kLogPeriod{5000};
+
+}  // namespace
+
+std::string progress_text(std::size_t done, std::size_t total, double elapsed_s, const std::string& noun) {
+  std::string text = std::to_string(done) + "/" + std::to_string(total) + " " + noun;
+  if (done == 0 || !(elapsed_s > 0)) return text;
+  const double rate = static_cast<double>(done) / elapsed_s;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, ", %.3g %s/s", rate, noun.c_str());
+  text += buf;
+  if (done < total) text += ", about " + duration_text(static_cast<double>(total - done) / rate) + " left";
+  return text;
+}
+
+ProgressLine::ProgressLine(std::size_t total, std::string noun, bool forced, bool enabled)
+    : total_(total), noun_(std::move(noun)), in_place_(::isatty(STDERR_FILENO) == 1) {
+  if (enabled && (in_place_ || forced)) ticker_ = std::thread([this] { tick(); });
+}
+
+ProgressLine::~ProgressLine() { finish(); }
+
+void ProgressLine::stage(const std::string& what) {
+  std::lock_guard lock(mutex_);
+  what_ = what;
+}
+
+void ProgressLine::done_one() {
+  std::lock_guard lock(mutex_);
+  ++done_;
+}
+
+std::string ProgressLine::text_locked() const {
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  return progress_text(done_, total_, elapsed, noun_) + (what_.empty() ? "" : "; " + what_);
+}
+
+void ProgressLine::print_above(const std::string& line) {
+  std::lock_guard lock(mutex_);
+  if (in_place_ && drawn_) std::cerr << "\r\033[K";
+  std::cerr << line << "\n";
+  if (in_place_ && drawn_) std::cerr << text_locked();
+  std::cerr << std::flush;
+}
+
+void ProgressLine::finish() {
+  {
+    std::lock_guard lock(mutex_);
+    stopped_ = true;
+  }
+  wake_.notify_all();
+  if (ticker_.joinable()) ticker_.join();
+}
+
+void ProgressLine::tick() {
+  std::unique_lock lock(mutex_);
+  const auto period = in_place_ ? kTerminalPeriod : kLogPeriod;
+  while (!wake_.wait_for(lock, period, [this] { return stopped_; })) {
+    if (in_place_ && Clock::now() - start_ < std::chrono::seconds(1)) continue;
+    if (in_place_)
+      std::cerr << "\r\033[K" << text_locked() << std::flush;
+    else
+      std::cerr << "progress: " << text_locked() << "\n" << std::flush;
+    drawn_ = true;
+  }
+  if (in_place_ && drawn_) std::cerr << "\r\033[K" << std::flush;
+  if (!in_place_) std::cerr << "progress: " << text_locked() << "\n" << std::flush;
+  drawn_ = false;
+}
+
+}  // namespace touchcloud::cli

@@ -1,0 +1,50 @@
+// Progress of a long batch (sweep runs, scored estimates) on stderr: done /
+// total, rate and time left on one line redrawn in place when stderr is a
+// terminal; quiet in logs and CI unless asked for (--progress), and then one
+// plain line every few seconds and one at the end instead of redraws.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <mutex>
+#include <string>
+#include <thread>
+
+namespace touchcloud::cli {
+
+// "3/10 runs, 0.5 runs/s, about 14 s left" (the rate and time left once
+// something is done).
+std::string progress_text(std::size_t done, std::size_t total, double elapsed_s, const std::string& noun);
+
+class ProgressLine {
+ public:
+  // `noun`: what is counted ("runs"); `forced`: also when stderr is not a
+  // terminal; not `enabled` (an MPI rank other than 0): never drawn.
+  ProgressLine(std::size_t total, std::string noun, bool forced, bool enabled = true);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  void stage(const std::string& what);  // shown after the count ("loading ground truth X")
+  void done_one();
+  // A line of the batch's own log, printed above the progress line.
+  void print_above(const std::string& line);
+  // Stops drawing and clears the line (before the results are printed).
+  void finish();
+
+ private:
+  void tick();
+  std::string text_locked() const;
+
+  using Clock = std::chrono::steady_clock;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::size_t total_, done_ = 0;
+  std::string noun_, what_;
+  bool in_place_ = false, drawn_ = false, stopped_ = false;
+  Clock::time_point start_ = Clock::now();
+  std::thread ticker_;
+};
+
+}  // namespace touchcloud::cli

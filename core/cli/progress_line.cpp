@@ -52,6 +52,12 @@ void ProgressLine::done_one() {
   ++done_;
 }
 
+void ProgressLine::set(std::size_t done, std::size_t total, const std::string& noun) {
+  std::lock_guard lock(mutex_);
+  if (noun != noun_) start_ = Clock::now();  // another loop: its own rate
+  done_ = done, total_ = total, noun_ = noun;
+}
+
 std::string ProgressLine::text_locked() const {
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   return progress_text(done_, total_, elapsed, noun_) + (what_.empty() ? "" : "; " + what_);

@@ -28,6 +28,8 @@ class ProgressLine {
 
   void stage(const std::string& what);  // shown after the count ("loading ground truth X")
   void done_one();
+  // Where the batch stands, when it counts for itself (a run's loop).
+  void set(std::size_t done, std::size_t total, const std::string& noun);
   // A line of the batch's own log, printed above the progress line.
   void print_above(const std::string& line);
   // Stops drawing and clears the line (before the results are printed).

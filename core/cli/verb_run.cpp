@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "progress_line.hpp"
 #include "touchcloud/pipeline.hpp"
 #include "seed_option.hpp"
 #include "verbs.hpp"
@@ -15,7 +16,7 @@ Action* add_run_verb(CLI::App& app) {
     std::vector<std::string> sets;
     std::uint64_t seed = 0;
     std::string out;
-    bool quiet = false;
+    bool quiet = false, progress = false;
   };
   static Options o;
   static Action action;
@@ -27,6 +28,9 @@ Action* add_run_verb(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", o.out, "output folder (default: out/<pipeline name>)");
   cmd->add_flag("-q,--quiet", o.quiet, "print no stage logs");
+  cmd->add_flag("--progress", o.progress,
+                "show the run's progress (iterations of its loop, rate, time left) also when stderr is not a "
+                "terminal (logs, CI)");
   cmd->callback([] {
     action = [] {
       std::vector<Override> overrides;
@@ -42,7 +46,17 @@ Action* add_run_verb(CLI::App& app) {
         throw InputError("pipeline name '" + p.name() + "' cannot name a folder in out/; give --out DIR");
       options.out_dir = o.out.empty() ? std::filesystem::path("out") / p.name() : std::filesystem::path(o.out);
       options.quiet = o.quiet;
+      // Past a second, the top-level loop's iterations on one line (stage
+      // logs printed above it), in a terminal or when asked.
+      ProgressLine progress(0, "", o.progress);
+      options.log_sink = [&progress](const std::string& line) {
+        progress.print_above(line.substr(0, line.size() - (!line.empty() && line.back() == '\n')));
+      };
+      options.on_loop_iteration = [&progress](const std::string& loop, std::int64_t done, std::int64_t budget) {
+        progress.set(static_cast<std::size_t>(done), static_cast<std::size_t>(budget), loop + " iterations");
+      };
       const RunResult r = run_pipeline(p, options);
+      progress.finish();
 
       std::cout << "pipeline '" << p.name() << "' ran in " << std::fixed << std::setprecision(3) << r.wall_time_s
                 << " s (seed " << o.seed << "), after " << r.load_time_s

@@ -54,7 +54,7 @@ class Runner {
     RunRecord& record = pipeline_.record;
     record = RunRecord{};
     want_captured_outputs();
-    const RunSettings settings{staging.dir(), options_.quiet};
+    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink};
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays
@@ -119,6 +119,8 @@ class Runner {
     }
   }
 
+  int loop_depth_ = 0;  // of the loop running now: 1 for a top-level one
+
   void run_loop(ResolvedLoop& loop) {
     loop.iterations_run = 0;
     auto& previous = previous_[&loop];
@@ -131,8 +133,12 @@ class Runner {
             if (auto it = values_.find(s->id + "." + out.name); it != values_.end()) previous[it->first] = it->second;
       }
       for (auto* s : loop.stages) s->iteration = static_cast<int>(i);
+      ++loop_depth_;
       run_nodes(loop.body);
+      --loop_depth_;
       ++loop.iterations_run;
+      if (loop_depth_ == 0 && options_.on_loop_iteration)
+        options_.on_loop_iteration(loop.id, loop.iterations_run, loop.max_iterations);
       if (loop.until_key) {
         const std::optional<std::any> until = resolve(values_.at(*loop.until_key));
         if (until && std::any_cast<bool>(*until)) break;

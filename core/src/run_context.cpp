@@ -78,7 +78,10 @@ void RunContext::log(const std::string& message) const {
   std::ostringstream line;
   line << "[" << stage_id_ << "] " << message << "\n";
   std::lock_guard<std::mutex> lock(record_mutex);
-  std::clog << line.str() << std::flush;
+  if (settings_.log_sink)
+    settings_.log_sink(line.str());
+  else
+    std::clog << line.str() << std::flush;
 }
 
 std::string RunContext::with_iteration(std::string text) const {

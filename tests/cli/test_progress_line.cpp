@@ -58,3 +58,15 @@ TEST(ProgressLine, ScoreShowsItInALogOnlyWhenAsked) {
   ASSERT_EQ(shown.exit_code, 0) << shown.err;
   EXPECT_NE(shown.err.find("progress: 2/2 estimates, "), std::string::npos) << shown.err;
 }
+
+TEST(ProgressLine, RunShowsItsLoopInALogOnlyWhenAsked) {
+  touchcloud::test::TempDir dir;
+  write_file(dir / "p.yaml", touchcloud::test::counting_pipeline());
+  const auto quiet = run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / "a").string()}, kTestPlugins);
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("progress:"), std::string::npos) << quiet.err;
+  const auto shown =
+      run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / "b").string(), "--progress"}, kTestPlugins);
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  EXPECT_NE(shown.err.find("progress: 3/3 l iterations, "), std::string::npos) << shown.err;
+}

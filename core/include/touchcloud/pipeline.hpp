@@ -21,6 +21,7 @@
 #include <any>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -80,6 +81,11 @@ struct RunOptions {
   // that embed the runtime (the Python module); each is produced even when
   // no stage reads it. InputError for a stage or port the pipeline lacks.
   std::vector<std::string> capture;
+  // Where stage log lines go (see RunSettings::log_sink); empty: std::clog.
+  std::function<void(const std::string& line)> log_sink;
+  // Called after each iteration of a top-level loop: its id, the iterations
+  // run so far and its budget (the run's progress).
+  std::function<void(const std::string& loop, std::int64_t done, std::int64_t budget)> on_loop_iteration;
 };
 
 struct StageTiming {

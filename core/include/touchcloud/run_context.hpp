@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <random>
 #include <string>
@@ -36,6 +37,9 @@ struct RunRecord {
 struct RunSettings {
   std::filesystem::path staging_dir;  // empty: this run writes no files
   bool quiet = false;                 // no log lines
+  // Where log lines go (each whole, with its newline; called from any
+  // stage's thread, one at a time); empty: std::clog.
+  std::function<void(const std::string& line)> log_sink;
 };
 
 class RunContext {

@@ -80,6 +80,15 @@ TEST(GelSightRender, AFlatGelRendersTheBackgroundExactly) {
   EXPECT_DOUBLE_EQ(reference.mm_per_px, 0.06);
 }
 
+TEST(GelSightRender, ImagesNeedTheRenderEffect) {
+  TempDir dir;
+  GelSightSimulation sim(gelsight_scene(dir, kPlane, "[contact]"), 1);
+  sim.step({0, 0}, false);
+  const std::string message = input_error([&] { sim.render(); });
+  EXPECT_NE(message.find("has no 'render' effect"), std::string::npos) << message;
+  EXPECT_EQ(sim.counts().frames_rendered, 0);
+}
+
 TEST(GelSightRender, ASpherePressGivesTheAnalyticNormalsColours) {
   TempDir dir;
   const auto scene = gelsight_scene(dir, kPlane, "[contact, render]");

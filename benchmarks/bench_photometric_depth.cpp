@@ -29,10 +29,13 @@ const Press& ball_press() {
   return press;
 }
 
+// Argument: 0 zero border (DST), 1 free border (DCT).
 void BM_PhotometricDepth(benchmark::State& state) {
   const auto calibration = sensor::load_photometric_calibration(
       std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
-  photometric::PhotometricDepthSolver solver(calibration, {});
+  photometric::DepthOptions options;
+  options.border = state.range(0) ? photometric::PoissonBorder::Free : photometric::PoissonBorder::Zero;
+  photometric::PhotometricDepthSolver solver(calibration, options);
   const Press& press = ball_press();
   for (auto _ : state) {
     auto result = solver.solve(press.image, press.reference);
@@ -40,7 +43,7 @@ void BM_PhotometricDepth(benchmark::State& state) {
   }
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_PhotometricDepth)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PhotometricDepth)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_DstPoissonOnly(benchmark::State& state) {
   photometric::DstPoisson poisson(320, 240);
@@ -48,5 +51,12 @@ void BM_DstPoissonOnly(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(poisson.solve(p, q).data);
 }
 BENCHMARK(BM_DstPoissonOnly)->Unit(benchmark::kMillisecond);
+
+void BM_DctPoissonOnly(benchmark::State& state) {
+  photometric::DctPoisson poisson(320, 240);
+  const cv::Mat p = cv::Mat::ones(240, 319, CV_64FC1) * 0.01, q = cv::Mat::ones(239, 320, CV_64FC1) * 0.01;
+  for (auto _ : state) benchmark::DoNotOptimize(poisson.solve(p, q).data);
+}
+BENCHMARK(BM_DctPoissonOnly)->Unit(benchmark::kMillisecond);
 
 }  // namespace

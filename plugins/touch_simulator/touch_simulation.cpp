@@ -6,6 +6,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "motion/pose_noise.hpp"
 #include "render/counter_random.hpp"
 
 namespace touchcloud::touch_simulator {
@@ -96,19 +97,9 @@ const SimulatedFrame& TouchSimulation::step(const Eigen::Vector2d& target_xy_mm,
   f.travel_past_contact_mm = motion_.travel_past_contact_mm();
 
   f.reported_base_from_sensor = f.touch.base_from_sensor;
-  if (scene_.effects.has(Effect::PoseNoise)) {
-    const auto& p = scene_.effect_parameters;
-    const auto frame = static_cast<std::uint64_t>(f.index);
-    const Eigen::Vector2d a = normal_pair_from(draw_key(noise_seed_, {kPoseNoise, frame, 0}));
-    const Eigen::Vector2d b = normal_pair_from(draw_key(noise_seed_, {kPoseNoise, frame, 1}));
-    const Eigen::Vector2d c = normal_pair_from(draw_key(noise_seed_, {kPoseNoise, frame, 2}));
-    const Eigen::Vector3d rotation_rad = Eigen::Vector3d(b.y(), c.x(), c.y()) * (p.pose_sigma_deg * M_PI / 180.0);
-    f.reported_base_from_sensor.translation() += Eigen::Vector3d(a.x(), a.y(), b.x()) * p.pose_sigma_mm;
-    if (rotation_rad.norm() > 0)
-      f.reported_base_from_sensor.linear() =
-          Eigen::AngleAxisd(rotation_rad.norm(), rotation_rad.normalized()).toRotationMatrix() *
-          f.reported_base_from_sensor.linear();
-  }
+  if (scene_.effects.has(Effect::PoseNoise))
+    f.reported_base_from_sensor = noisy_pose(f.touch.base_from_sensor, scene_.effect_parameters, noise_seed_, kPoseNoise,
+                                             static_cast<std::uint64_t>(f.index));
   ++counts_.frames_simulated;
   if (f.touch.pressed) ++counts_.touches_completed;
   has_frame_ = true;

@@ -2,8 +2,13 @@
 // an object, from a scene file. One call is one camera frame; it simulates
 // only the effects the scene names and computes only the outputs some stage
 // reads (no pixels for a pipeline that reads only `tactile`, no images unless
-// `frame` is read).
+// `frame` is read). A scene whose sensor says `family: gelsight` is simulated
+// as a monocular GelSight-type sensor instead (gelsight_simulation.hpp): its
+// outputs are `image`, `image_reference`, `height_truth`, and `tactile`,
+// `truth_base`, `pose`, `touch_done` as for the GelStereo.
 #include <sstream>
+
+#include "gelsight_simulation.hpp"
 
 #include "scene/scene.hpp"
 #include "touch_simulation.hpp"
@@ -44,7 +49,11 @@ class TouchSimulator final : public Stage {
   touch_simulator::Scene scene_;  // read at check, with the robot values in force
   std::shared_ptr<const touch_simulator::ObjectSurface> object_;  // built at check
 
+  double truth_contact_threshold_mm_ = 0.05;
+  int truth_stride_px_ = 8;
+
   std::unique_ptr<touch_simulator::TouchSimulation> sim_;
+  std::unique_ptr<touch_simulator::GelSightSimulation> gelsight_;
   CloudConstPtr rest_cloud_;
   std::vector<int> marker_ids_;
 
@@ -65,6 +74,10 @@ class TouchSimulator final : public Stage {
              "reach it (a rim or the object's side under the gel): counted, warned, noted in summary.json");
     p.add("target_xy_mm", target_xy_mm_).unit("mm")
         .doc("[x, y] of the touch in the base frame when input 'target' is not wired");
+    p.add("truth_contact_threshold_mm", truth_contact_threshold_mm_, 0.05).unit("mm").above(0)
+        .doc("gelsight scenes: the ground-truth contact mask is where the true height exceeds this");
+    p.add("truth_stride_px", truth_stride_px_, 8).unit("px").range(1, 64)
+        .doc("gelsight scenes: pixel spacing of the pad's surface points in 'tactile' and 'truth_base'");
   }
 
   void declare_ports(PortSet& ports) override {
@@ -82,6 +95,11 @@ class TouchSimulator final : public Stage {
                                                            "noise): contact_mask's reference");
     ports.output<DenseMapsPtr>("dense_truth", "ground truth of the colour pair: left/right disparity (px), depth "
                                               "in the rectified left camera frame (mm), contact mask");
+    ports.output<MonoColourFramePtr>("image", "gelsight scenes: the rendered colour image (needs 'render')");
+    ports.output<MonoColourFramePtr>("image_reference", "gelsight scenes: the image of the gel at rest (no contact, "
+                                                        "no noise): photometric_depth's reference");
+    ports.output<HeightMapPtr>("height_truth", "gelsight scenes: the true height map (mm) with the contact mask "
+                                               "(true height > truth_contact_threshold_mm)");
     ports.output<SensorPose>("pose", "the sensor pose the robot reports");
     ports.output<bool>("touch_done", "true on the recorded frame (stable contact, then the further press)");
   }
@@ -99,6 +117,7 @@ class TouchSimulator final : public Stage {
   }
 
   void on_configure(RunContext& ctx) override {
+    if (scene_.family == sensor::SensorFamily::GelSight) return configure_gelsight(ctx);
     sim_ = std::make_unique<touch_simulator::TouchSimulation>(scene_, ctx.rng()(), object_);
     const touch_simulator::RobotSpec& r = scene_.robot;
     ctx.used("speed_mm_s", r.speed_mm_s);
@@ -142,7 +161,60 @@ class TouchSimulator final : public Stage {
     return {(*target_xy_mm_)[0], (*target_xy_mm_)[1]};
   }
 
+  void configure_gelsight(RunContext& ctx) {
+    gelsight_ = std::make_unique<touch_simulator::GelSightSimulation>(scene_, ctx.rng()(), object_);
+    const touch_simulator::RobotSpec& r = scene_.robot;
+    ctx.used("speed_mm_s", r.speed_mm_s);
+    ctx.used("approach_speed_mm_s", r.approach_speed_mm_s);
+    ctx.used("press_depth_mm", r.press_depth_mm);
+    ctx.used("safe_clearance_mm", r.safe_clearance_mm);
+    ctx.used("max_contact_depth_mm", r.max_contact_depth_mm);
+    ctx.note("effects", scene_.effects.str());
+    const auto& s = scene_.gelsight;
+    std::ostringstream text;
+    text << "gelsight sensor " << s.name << ": " << s.width_px << " x " << s.height_px << " px at " << s.mm_per_px
+         << " mm/px (pad " << s.pad_width_mm() << " x " << s.pad_height_mm() << " mm), " << s.lights.size()
+         << " lights; effects: " << scene_.effects.str();
+    ctx.log(text.str());
+  }
+
+  static void refuse(StageIO& io, std::initializer_list<const char*> outputs, const std::string& why) {
+    for (const char* name : outputs)
+      if (io.wants(name)) throw InputError("output '" + std::string(name) + "' was read, but " + why);
+  }
+
+  void process_gelsight(StageIO& io, RunContext& ctx) {
+    refuse(io, {"markers", "frame", "colour_frame", "colour_reference", "dense_truth"},
+           "the scene " + scene_.file.string() + " has a GelSight-type sensor (sensor.family gelsight): read "
+           "'image', 'image_reference' and 'height_truth' instead");
+    const auto* contact = io.optional_input<ContactState>("contact");
+    const touch_simulator::GelSightFrame& f = gelsight_->step(target(io), contact && contact->stable);
+    SensorPose pose;
+    pose.base_from_sensor = f.reported_base_from_sensor;
+    if (io.wants("tactile"))
+      io.output<TactileCloudPtr>("tactile", std::make_shared<TactileCloud>(gelsight_->truth_tactile(truth_stride_px_)));
+    if (io.wants("truth_base")) io.output<CloudConstPtr>("truth_base", gelsight_->truth_base(truth_stride_px_));
+    if (io.wants("image")) io.output<MonoColourFramePtr>("image", std::make_shared<MonoColourFrame>(gelsight_->render()));
+    if (io.wants("image_reference"))
+      io.output<MonoColourFramePtr>("image_reference",
+                                    std::make_shared<MonoColourFrame>(gelsight_->render_reference()));
+    if (io.wants("height_truth"))
+      io.output<HeightMapPtr>("height_truth",
+                              std::make_shared<HeightMap>(gelsight_->height_truth(truth_contact_threshold_mm_)));
+    if (io.wants("pose")) io.output("pose", pose);
+    if (io.wants("touch_done")) io.output("touch_done", f.touch.pressed);
+    if (f.touch.pressed) {
+      ctx.metric("touch_frames", f.touch.frame_in_touch + 1, "frames");
+      ctx.metric("press_travel_mm", f.travel_past_contact_mm, "mm");
+      report_reach(f.touch, gelsight_->apex_above_target_surface_mm(), ctx);
+    }
+  }
+
   void on_process(StageIO& io, RunContext& ctx) override {
+    if (gelsight_) return process_gelsight(io, ctx);
+    refuse(io, {"image", "image_reference", "height_truth"},
+           "the scene " + scene_.file.string() + " has a GelStereo (sensor.family gelstereo): set 'family: gelsight' "
+           "in its sensor section for a GelSight-type sensor's images and height maps");
     const auto* contact = io.optional_input<ContactState>("contact");
     const touch_simulator::SimulatedFrame& f = sim_->step(target(io), contact && contact->stable);
     SensorPose pose;
@@ -175,28 +247,35 @@ class TouchSimulator final : public Stage {
     if (f.touch.pressed) {
       ctx.metric("touch_frames", f.touch.frame_in_touch + 1, "frames");
       ctx.metric("press_travel_mm", f.travel_past_contact_mm, "mm");
-      report_reach(f, ctx);
+      report_reach(f.touch, sim_->apex_above_target_surface_mm(), ctx);
     }
   }
 
   // A touch whose gel stopped far above the surface at its target recorded
   // something else (a rim, the object's side): its points are not of the
   // target, and a surface fitted to them can swing far from the object.
-  void report_reach(const touch_simulator::SimulatedFrame& f, RunContext& ctx) {
-    const double gap = sim_->apex_above_target_surface_mm();
+  void report_reach(const touch_simulator::TouchStep& touch, double gap, RunContext& ctx) {
     ctx.metric("apex_above_target_mm", gap, "mm");
     if (gap <= reach_tolerance_mm_) return;
     ++unreachable_touches_;
     std::ostringstream s;
-    s << "warning: touch " << f.touch.touch << " at (" << f.touch.target_xy_mm.x() << ", " << f.touch.target_xy_mm.y()
+    s << "warning: touch " << touch.touch << " at (" << touch.target_xy_mm.x() << ", " << touch.target_xy_mm.y()
       << ") mm did not reach the object's surface there: the pressed gel apex stopped " << gap
       << " mm above it (reach_tolerance_mm " << reach_tolerance_mm_
       << "); something higher under the gel, a rim or the object's side, was touched instead";
     ctx.log(s.str());
-    ctx.note("unreachable_touch_" + std::to_string(f.touch.touch), s.str().substr(9));
+    ctx.note("unreachable_touch_" + std::to_string(touch.touch), s.str().substr(9));
   }
 
   void on_finish(RunContext& ctx) override {
+    if (gelsight_) {
+      ctx.metric("unreachable_touches", static_cast<double>(unreachable_touches_), "touches");
+      const auto& c = gelsight_->counts();
+      ctx.metric("frames_simulated", static_cast<double>(c.frames_simulated), "frames");
+      ctx.metric("frames_rendered", static_cast<double>(c.frames_rendered), "frames");
+      ctx.metric("touches", static_cast<double>(c.touches_completed), "touches");
+      return;
+    }
     if (!sim_) return;
     ctx.metric("unreachable_touches", static_cast<double>(unreachable_touches_), "touches");
     const auto& c = sim_->counts();
@@ -217,4 +296,5 @@ class TouchSimulator final : public Stage {
 }  // namespace touchcloud
 
 TOUCHCLOUD_PLUGIN(touchcloud::TouchSimulator, "touch_simulator",
-                  "Simulates the GelStereo Palm 2.0 touching an object: marker truth, pixels or images, per frame")
+                  "Simulates the GelStereo Palm 2.0 (or a GelSight-type sensor) touching an object: truth, pixels or "
+                  "images, per frame")

@@ -106,6 +106,7 @@ Scene load_scene(const fs::path& file) {
   Scene scene;
   scene.file = file;
   scene.sensor.file = file;
+  scene.gelsight.file = file;
   scene.name = file.parent_path().filename().string();
   {
     ConfigFields top(root, "", problems);
@@ -113,9 +114,20 @@ Scene load_scene(const fs::path& file) {
     top.text("description", "");
     if (auto object = top.child("object")) read_object_section(*object, scene.object, file.parent_path(), problems);
     if (auto workspace = top.child("workspace")) read_workspace_section(*workspace, scene.workspace);
-    if (auto fields = top.child("sensor")) sensor::read_gelstereo_sensor(*fields, problems, scene.sensor);
+    if (auto fields = top.child("sensor")) {
+      scene.family = sensor::read_sensor_family(*fields);
+      if (scene.family == sensor::SensorFamily::GelSight) sensor::read_gelsight_sensor(*fields, problems, scene.gelsight);
+      else sensor::read_gelstereo_sensor(*fields, problems, scene.sensor);
+    }
     if (auto robot = top.child("robot")) read_robot(*robot, scene.robot);
-    read_effects(top.raw("effects"), scene, problems);
+    const YAML::Node effects = top.raw("effects");
+    read_effects(effects, scene, problems);
+    if (scene.family == sensor::SensorFamily::GelSight)
+      for (Effect e : {Effect::Refraction, Effect::LensDistortion, Effect::MarkerDropout})
+        if (scene.effects.has(e))
+          problems.add(effects, std::string("effects: '") + to_string(e) +
+                                    "' does not apply to sensor.family gelsight (a flat gel without markers, seen "
+                                    "straight on); remove it");
   }
   problems.throw_if_any();
   return scene;

@@ -10,6 +10,7 @@
 
 #include "scene/effects.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/sensor/gelsight_sensor.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 #include "touchcloud/types/scene_object.hpp"
 #include "touchcloud/types/workspace.hpp"
@@ -40,7 +41,11 @@ struct Scene {
   std::string name;
   ObjectSpec object;
   Workspace workspace{{-50, 50}, {-50, 50}, 10, 10};  // base frame; a scene usually sets it
+  // Which sensor the `sensor:` section describes (its `family` field; absent:
+  // the GelStereo). Only the family's own description below is read.
+  sensor::SensorFamily family = sensor::SensorFamily::GelStereo;
   sensor::GelStereoSensor sensor;  // the `sensor:` section (shared with the sensing stages)
+  sensor::GelSightSensor gelsight; // the `sensor:` section of family gelsight
   RobotSpec robot;
   EffectSet effects;
   EffectParameters effect_parameters;

@@ -1,4 +1,5 @@
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/sensor/gelsight_sensor.hpp"
 #include "touchcloud/path_text.hpp"
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/file_write.hpp"
@@ -233,7 +234,13 @@ GelStereoSensor load_gelstereo_sensor(const fs::path& file) {
   sensor.file = file;
   {
     ConfigFields fields(root["sensor"], "sensor", problems);
-    read_gelstereo_sensor(fields, problems, sensor);
+    if (read_sensor_family(fields) == SensorFamily::GelSight) {
+      fields.error("family", "is gelsight: a GelSight-type sensor, not the GelStereo (gel, markers, plate, "
+                             "cameras) this stage needs");
+      for (const auto& kv : fields.node()) fields.raw(kv.first.as<std::string>(""));  // one problem, not one per field
+    } else {
+      read_gelstereo_sensor(fields, problems, sensor);
+    }
   }
   problems.throw_if_any();
   return sensor;

@@ -99,3 +99,14 @@ TEST(GelStereoSensor, BadFilesAreNamed) {
   }
   EXPECT_THROW(sensor::load_gelstereo_sensor(dir / "missing.yaml"), InputError);
 }
+
+TEST(GelStereoSensor, AGelSightSectionIsRefusedByItsFamily) {
+  TempDir dir;
+  touchcloud::test::write_file(dir / "gelsight.yaml", "sensor: {family: gelsight, mm_per_px: 0.06}\n");
+  const std::string message = touchcloud::test::input_error_of([&] { sensor::load_gelstereo_sensor(dir / "gelsight.yaml"); });
+  EXPECT_NE(message.find("sensor.family: is gelsight"), std::string::npos) << message;
+  EXPECT_EQ(message.find("mm_per_px"), std::string::npos) << message;
+  // Naming the GelStereo's family reads as before.
+  touchcloud::test::write_file(dir / "gelstereo.yaml", "sensor: {family: gelstereo, gel: {diameter_mm: 60}}\n");
+  EXPECT_DOUBLE_EQ(sensor::load_gelstereo_sensor(dir / "gelstereo.yaml").gel.diameter_mm, 60.0);
+}

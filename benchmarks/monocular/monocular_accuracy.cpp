@@ -1,0 +1,178 @@
+// The classical depth of a GelSight-type sensor on held-out simulated presses
+// of objects the calibration never saw: a sphere, a cylinder's edge, a
+// screw-like thread, text relief and the fox mask's nose. Per object: height
+// RMSE and largest error (mm) over the true contact region, contact IoU and
+// F1, for photometric_depth with a zero and with a free border, from the
+// shipped calibration (sample_clouds/gelsight_ball/photometric_calibration.yaml).
+// Time per frame: bench_photometric_depth (one core).
+//
+//   build/benchmarks/bin/monocular_accuracy [--noise SIGMA_GREY] [--out benchmarks/monocular]
+//
+// writes results.md (and prints it).
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include "gelsight_simulation.hpp"
+#include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/sensor/photometric_calibration.hpp"
+
+using namespace touchcloud;
+using touch_simulator::ObjectSurface;
+
+namespace {
+
+const std::string kSource = TOUCHCLOUD_SOURCE_DIR;
+
+// An object given by its height over the table (mm), sampled for max_height_mm.
+class HeightFunction final : public ObjectSurface {
+ public:
+  explicit HeightFunction(std::function<double(double, double)> f) : f_(std::move(f)) {}
+  double height_mm(const Eigen::Vector2d& xy) const override { return std::max(0.0, f_(xy.x(), xy.y())); }
+  double max_height_mm(const Eigen::Vector2d& c, double r) const override {
+    double m = 0;
+    for (double y = -r; y <= r; y += 0.05)
+      for (double x = -r; x <= r; x += 0.05)
+        if (x * x + y * y <= r * r) m = std::max(m, height_mm(c + Eigen::Vector2d(x, y)));
+    return m;
+  }
+
+ private:
+  std::function<double(double, double)> f_;
+};
+
+// "TC" raised 0.4 mm on a block 10 mm high, letters 8 mm tall.
+std::shared_ptr<ObjectSurface> text_relief() {
+  auto letters = std::make_shared<cv::Mat>(cv::Mat::zeros(400, 600, CV_8UC1));  // 0.05 mm per pixel, centred
+  cv::putText(*letters, "TC", {90, 290}, cv::FONT_HERSHEY_SIMPLEX, 6.0, cv::Scalar(255), 30, cv::LINE_AA);
+  cv::GaussianBlur(*letters, *letters, cv::Size(0, 0), 1.5);  // 0.075 mm rounding of the letters' walls
+  return std::make_shared<HeightFunction>([letters](double x, double y) {
+    const double u = x / 0.05 + 300, v = 200 - y / 0.05;
+    if (u < 0 || v < 0 || u >= 599 || v >= 399) return 10.0;
+    const int i = static_cast<int>(u), j = static_cast<int>(v);
+    const double a = u - i, b = v - j;
+    const auto at = [&](int jj, int ii) { return letters->at<std::uint8_t>(jj, ii) / 255.0; };
+    const double s = (1 - b) * ((1 - a) * at(j, i) + a * at(j, i + 1)) + b * ((1 - a) * at(j + 1, i) + a * at(j + 1, i + 1));
+    return 10.0 + 0.4 * s;
+  });
+}
+
+struct Case {
+  std::string name;
+  std::shared_ptr<const ObjectSurface> object;
+  Eigen::Vector2d target;
+  double press_mm;
+};
+
+std::vector<Case> cases() {
+  auto fox_scene = touch_simulator::load_scene(kSource + "/sample_clouds/fox_mask/scene_gelsight.yaml");
+  std::shared_ptr<const ObjectSurface> fox = touch_simulator::make_object_surface(fox_scene.object);
+  return {
+      {"sphere (radius 5 mm)", std::make_shared<HeightFunction>([](double x, double y) {
+         const double r2 = x * x + y * y;
+         return r2 < 25 ? 5.0 + std::sqrt(25 - r2) : 0.0;
+       }), {0.7, 0.4}, 0.5},
+      {"cylinder edge (radius 6 mm, flat top)", std::make_shared<HeightFunction>([](double x, double y) {
+         return std::hypot(x, y) < 6 ? 10.0 : 0.0;
+       }), {6.0, 0.0}, 0.4},
+      {"screw thread (1 mm pitch on a 4 mm radius)", std::make_shared<HeightFunction>([](double x, double y) {
+         if (std::abs(y) >= 4) return 0.0;
+         const double phase = (x + 0.1 * y) / 1.0;
+         const double tri = 2 * std::abs(phase - std::floor(phase) - 0.5);  // 0 at the crest, 1 at the root
+         return 6.0 + std::sqrt(16 - y * y) - 0.3 * tri;
+       }), {0.0, 0.0}, 0.5},
+      {"text relief ('TC', 0.4 mm)", text_relief(), {0.0, 0.0}, 0.3},
+      {"fox mask nose", fox, {0.0, -46.0}, 0.5},
+  };
+}
+
+struct Scores {
+  double rmse = 0, max_error = 0, iou = 0, f1 = 0;
+  long contact_px = 0;
+};
+
+Scores score(const photometric::DepthResult& r, const HeightMap& truth) {
+  Scores s;
+  double sum2 = 0;
+  for (int v = 0; v < truth.height_mm.rows; ++v)
+    for (int u = 0; u < truth.height_mm.cols; ++u) {
+      if (!truth.contact_mask.at<std::uint8_t>(v, u)) continue;
+      const double e = r.height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
+      sum2 += e * e;
+      s.max_error = std::max(s.max_error, std::abs(e));
+      ++s.contact_px;
+    }
+  s.rmse = s.contact_px ? std::sqrt(sum2 / s.contact_px) : 0;
+  const double tp = cv::countNonZero(r.contact_mask & truth.contact_mask);
+  const double fp = cv::countNonZero(r.contact_mask & ~truth.contact_mask);
+  const double fn = cv::countNonZero(~r.contact_mask & truth.contact_mask);
+  s.iou = tp / std::max(1.0, tp + fp + fn);
+  s.f1 = 2 * tp / std::max(1.0, 2 * tp + fp + fn);
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double noise = 0;
+  std::string out;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i];
+    if (key == "--noise") noise = std::stod(argv[i + 1]);
+    else if (key == "--out") out = argv[i + 1];
+    else {
+      std::cerr << "usage: monocular_accuracy [--noise SIGMA_GREY] [--out DIR]\n";
+      return 2;
+    }
+  }
+  const auto calibration =
+      sensor::load_photometric_calibration(kSource + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
+  touch_simulator::Scene scene = touch_simulator::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml");
+  // Every press descends at 0.04 mm per frame from the first frame: no fast
+  // approach overshooting the press depth.
+  scene.robot.approach_speed_mm_s = 0;
+  if (noise > 0) {
+    scene.effects.add(touch_simulator::Effect::PixelNoise);
+    scene.effect_parameters.noise_sigma_grey = noise;
+  }
+  std::ostringstream table;
+  table << std::fixed << std::setprecision(3);
+  table << "| object | press (mm) | contact px | border | height RMSE (mm) | max error (mm) | contact IoU | contact F1 |\n"
+        << "|---|---|---|---|---|---|---|---|\n";
+  for (const Case& c : cases()) {
+    touch_simulator::GelSightSimulation sim(scene, 1, c.object);
+    for (int i = 0; i < 100000; ++i)
+      if (sim.step(c.target, false).travel_past_contact_mm >= c.press_mm) break;
+    const cv::Mat image = sim.render().image, reference = sim.render_reference().image;
+    const HeightMap truth = sim.height_truth(0.05);
+    for (auto border : {photometric::PoissonBorder::Zero, photometric::PoissonBorder::Free}) {
+      photometric::DepthOptions options;
+      options.border = border;
+      photometric::PhotometricDepthSolver solver(calibration, options);
+      const Scores s = score(solver.solve(image, reference), truth);
+      table << "| " << c.name << " | " << c.press_mm << " | " << s.contact_px << " | "
+            << (border == photometric::PoissonBorder::Zero ? "zero" : "free") << " | " << s.rmse << " | "
+            << s.max_error << " | " << s.iou << " | " << s.f1 << " |\n";
+    }
+  }
+  std::ostringstream text;
+  text << "# Classical depth (photometric_depth) on held-out presses\n\n"
+       << "Simulated GelSight Mini-like sensor (320 x 240 px, 0.06 mm/px), calibration from nine presses of a 4 mm "
+          "ball; each object pressed once, the given depth past first contact at 0.04 mm per frame (truth contact: true "
+          "height > 0.05 mm); pixel noise sigma "
+       << noise << " grey levels.\n"
+       << "`build/benchmarks/bin/monocular_accuracy --noise " << noise << "`\n\n"
+       << table.str();
+  std::cout << text.str();
+  if (!out.empty()) {
+    const std::string file = out + "/results" + (noise > 0 ? "_noise" : "") + ".md";
+    std::ofstream(file) << text.str();
+    std::cout << "wrote " << file << "\n";
+  }
+  return 0;
+}

@@ -1,0 +1,118 @@
+// photometric_depth: the classical depth of a GelSight-type sensor (what a
+// GelSight user runs today): gradients from the photometric calibration,
+// height by Poisson integration (FFTW's DST, planned once in configure), the
+// contact mask from the height and the difference to the reference image.
+// `border: free` integrates without assuming a zero height on the image's
+// border (DCT, anchored on the flat pixels), for contacts larger than the pad.
+#include <fftw3.h>
+#include <opencv2/core/version.hpp>
+
+#include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/library_versions.hpp"
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/types/height_map.hpp"
+#include "touchcloud/types/mono_colour_frame.hpp"
+
+namespace touchcloud {
+
+namespace {
+const LibraryVersion opencv_version("opencv", CV_VERSION);
+const LibraryVersion fftw_library("fftw", ::fftw_version);  // "fftw-3.3.10-..."
+
+std::string size_text(int width, int height) { return std::to_string(width) + " x " + std::to_string(height) + " px"; }
+}  // namespace
+
+class PhotometricDepth final : public Stage {
+  std::string calibration_file_;
+  photometric::DepthOptions options_;
+  sensor::PhotometricCalibration calibration_;  // read at check
+  std::unique_ptr<photometric::PhotometricDepthSolver> solver_;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("calibration", calibration_file_, std::string())
+        .input_file()
+        .doc("photometric calibration file (photometric_calibration's output) of this sensor and image size");
+    p.add("border", options_.border, photometric::PoissonBorder::Zero,
+          {{"zero", photometric::PoissonBorder::Zero}, {"free", photometric::PoissonBorder::Free}})
+        .doc("zero: height 0 on the image's border (DST; right while the contact stays inside the image); free: "
+             "no assumption there (DCT), the height is 0 where the gel is flat (contact running off the pad)");
+    p.add("flat_grey", options_.flat_grey, 3.0).unit("grey levels").at_least(0).below(255)
+        .doc("a pixel whose difference to the reference is at most this on every channel is flat (gradient 0)");
+    p.add("contact_height_mm", options_.contact_height_mm, 0.05).unit("mm").above(0)
+        .doc("contact where the height exceeds this ...");
+    p.add("contact_grey", options_.contact_grey, 6.0).unit("grey levels").at_least(0).below(255)
+        .doc("... and the largest channel difference to the reference (5 x 5 mean) exceeds this");
+  }
+
+  void declare_ports(PortSet& ports) override {
+    ports.input<MonoColourFramePtr>("image", "the sensor's colour image now");
+    ports.input<MonoColourFramePtr>("reference", "the same sensor's image without contact");
+    ports.output<HeightMapPtr>("height", "height map (mm) with contact mask, pose of the image");
+  }
+
+  void on_check(RunContext&) override {
+    try {
+      calibration_ = sensor::load_photometric_calibration(calibration_file_);
+    } catch (const InputError& e) {
+      throw ParameterError("calibration", e.what());
+    }
+    if (calibration_.width_px < 3 || calibration_.height_px < 3)
+      throw ParameterError("calibration", calibration_file_ + ": image size " +
+                                              size_text(calibration_.width_px, calibration_.height_px) +
+                                              " is too small (at least 3 x 3)");
+  }
+
+  void on_configure(RunContext& ctx) override {
+    solver_ = std::make_unique<photometric::PhotometricDepthSolver>(calibration_, options_);
+    ctx.note("calibration_sensor", calibration_.sensor);
+    ctx.log("calibration of " + calibration_.sensor + " at " +
+            size_text(calibration_.width_px, calibration_.height_px) + ", polynomial degree " +
+            std::to_string(calibration_.degree) + "; " +
+            (options_.border == photometric::PoissonBorder::Zero ? "DST (zero border)" : "DCT (free border)") +
+            " planned once for that size");
+  }
+
+  void require_frame(const MonoColourFramePtr& frame, const std::string& port) const {
+    const std::string where = "input '" + port + "'";
+    if (!frame) throw InputError(where + ": no image (null)");
+    if (frame->image.empty()) throw InputError(where + ": the image is empty");
+    if (frame->image.type() != CV_8UC3)
+      throw InputError(where + ": the image is " + cv::typeToString(frame->image.type()) + "; expected 8-bit BGR");
+    if (frame->image.cols != calibration_.width_px || frame->image.rows != calibration_.height_px)
+      throw InputError(where + ": the image is " + size_text(frame->image.cols, frame->image.rows) +
+                       ", but the calibration " + calibration_file_ + " is for " +
+                       size_text(calibration_.width_px, calibration_.height_px));
+    if (!frame->sensor.empty() && frame->sensor != calibration_.sensor)
+      throw InputError(where + ": the image is of sensor '" + frame->sensor + "', but the calibration " +
+                       calibration_file_ + " is of sensor '" + calibration_.sensor + "'");
+  }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto& image = io.input<MonoColourFramePtr>("image");
+    const auto& reference = io.input<MonoColourFramePtr>("reference");
+    require_frame(image, "image");
+    require_frame(reference, "reference");
+    photometric::DepthResult r = solver_->solve(image->image, reference->image);
+    auto map = std::make_shared<HeightMap>();
+    map->height_mm = r.height_mm;
+    map->valid = cv::Mat(r.height_mm.size(), CV_8UC1, cv::Scalar(255));
+    map->contact_mask = r.contact_mask;
+    map->sensor = calibration_.sensor;
+    map->mm_per_px = calibration_.mm_per_px;
+    map->gel_thickness_mm = calibration_.gel_thickness_mm;
+    map->timestamp_s = image->timestamp_s;
+    map->index = image->index;
+    map->pose = image->pose;
+    double max_height = 0;
+    cv::minMaxLoc(r.height_mm, nullptr, &max_height);
+    ctx.metric("max_height_mm", max_height, "mm");
+    ctx.metric("flat_pixels", static_cast<double>(r.flat_pixels), "px");
+    ctx.metric("contact_share", cv::countNonZero(r.contact_mask) / static_cast<double>(r.contact_mask.total()), "1");
+    io.output<HeightMapPtr>("height", std::move(map));
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::PhotometricDepth, "photometric_depth",
+                  "Height map and contact mask of a GelSight-type image: calibrated gradients, FFTW Poisson integration")

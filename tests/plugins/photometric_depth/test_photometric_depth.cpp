@@ -1,0 +1,205 @@
+// photometric_depth: Poisson integration is exact on exact gradients; a
+// sphere pressed into the simulated gel comes back from its rendered image
+// after calibration; images of another size or sensor are refused.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "ball_calibration.hpp"
+#include "gradients/photometric_depth_solver.hpp"
+#include "poisson/dct_poisson.hpp"
+#include "poisson/dst_poisson.hpp"
+#include "touchcloud/sensor/photometric_calibration.hpp"
+
+using namespace touchcloud;
+using namespace touchcloud::test;
+
+TEST(DstPoisson, RecoversAKnownHeightMapFromItsExactGradients) {
+  const int w = 320, h = 240;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> noise(-0.2, 0.2);
+  cv::Mat height = cv::Mat::zeros(h, w, CV_64FC1);
+  for (int v = 1; v + 1 < h; ++v)
+    for (int u = 1; u + 1 < w; ++u) {
+      const double x = (u - 150.0) / 40, y = (v - 110.0) / 30;
+      height.at<double>(v, u) = 1.5 * std::exp(-x * x - y * y) + noise(rng);  // a bump and rough texture
+    }
+  cv::Mat p(h, w - 1, CV_64FC1), q(h - 1, w, CV_64FC1);
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u + 1 < w; ++u) p.at<double>(v, u) = height.at<double>(v, u + 1) - height.at<double>(v, u);
+  for (int v = 0; v + 1 < h; ++v)
+    for (int u = 0; u < w; ++u) q.at<double>(v, u) = height.at<double>(v + 1, u) - height.at<double>(v, u);
+  photometric::DstPoisson poisson(w, h);
+  const cv::Mat solved = poisson.solve(p, q);
+  double worst = 0;
+  for (int v = 1; v + 1 < h; ++v)
+    for (int u = 1; u + 1 < w; ++u) worst = std::max(worst, std::abs(solved.at<double>(v, u) - height.at<double>(v, u)));
+  EXPECT_LT(worst, 1e-6) << "worst " << worst << " mm";
+  // The plan is reused: a second solve gives the same bits.
+  EXPECT_EQ(cv::countNonZero(poisson.solve(p, q) != solved), 0);
+  EXPECT_THROW(photometric::DstPoisson(2, 10), std::invalid_argument);
+}
+
+TEST(DctPoisson, RecoversAnyHeightMapUpToAConstantFromItsExactGradients) {
+  const int w = 64, h = 48;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> any(-1.0, 2.0);
+  cv::Mat height(h, w, CV_64FC1);
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) height.at<double>(v, u) = 0.02 * u + any(rng);  // nothing zero on the border
+  cv::Mat p(h, w - 1, CV_64FC1), q(h - 1, w, CV_64FC1);
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u + 1 < w; ++u) p.at<double>(v, u) = height.at<double>(v, u + 1) - height.at<double>(v, u);
+  for (int v = 0; v + 1 < h; ++v)
+    for (int u = 0; u < w; ++u) q.at<double>(v, u) = height.at<double>(v + 1, u) - height.at<double>(v, u);
+  photometric::DctPoisson poisson(w, h);
+  const cv::Mat solved = poisson.solve(p, q);
+  const double mean = cv::mean(height)[0];
+  double worst = 0;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u)
+      worst = std::max(worst, std::abs(solved.at<double>(v, u) - (height.at<double>(v, u) - mean)));
+  EXPECT_LT(worst, 1e-6) << "worst " << worst << " mm";
+  EXPECT_THROW(photometric::DctPoisson(1, 10), std::invalid_argument);
+}
+
+TEST(PhotometricDepth, RecoversASpherePressFromItsImageAfterCalibration) {
+  TempDir dir;
+  const auto file = calibrate_on_ball(dir, {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}});
+  photometric::PhotometricDepthSolver solver(sensor::load_photometric_calibration(file), {});
+  // A held-out press of the ball, elsewhere in the image and less deep.
+  touch_simulator::GelSightSimulation sim(ball_scene(), 2);
+  press_pad_into(sim, {0.4, -0.3}, 0.5);
+  const auto result = solver.solve(sim.render().image, sim.render_reference().image);
+  const HeightMap truth = sim.height_truth(0.05);
+  double sum2 = 0, worst = 0, peak = 0;
+  int n = 0;
+  for (int v = 0; v < truth.height_mm.rows; ++v)
+    for (int u = 0; u < truth.height_mm.cols; ++u) {
+      if (!truth.contact_mask.at<std::uint8_t>(v, u)) continue;
+      const double e = result.height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
+      sum2 += e * e, ++n;
+      worst = std::max(worst, std::abs(e));
+      peak = std::max(peak, double(truth.height_mm.at<float>(v, u)));
+    }
+  ASSERT_GT(n, 1000);
+  const double rmse = std::sqrt(sum2 / n);
+  const double iou = cv::countNonZero(result.contact_mask & truth.contact_mask) /
+                     double(cv::countNonZero(result.contact_mask | truth.contact_mask));
+  std::cout << "sphere press " << peak << " mm deep: height RMSE " << rmse << " mm, max error " << worst
+            << " mm over " << n << " contact pixels; contact IoU " << iou << "\n";
+  EXPECT_LT(rmse, 0.05);
+  EXPECT_LT(worst, 0.15);
+  EXPECT_GT(iou, 0.8);
+}
+
+TEST(PhotometricDepth, AFreeBorderKeepsTheHeightOfAContactThatRunsOffTheImage) {
+  TempDir dir;
+  const auto file = calibrate_on_ball(dir, {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}});
+  // The ball under the pad's edge (half width 9.6 mm): part of the contact lies outside the image.
+  touch_simulator::GelSightSimulation sim(ball_scene(), 3);
+  press_pad_into(sim, {8.8, 0.0}, 0.5);
+  const HeightMap truth = sim.height_truth(0.05);
+  int on_border = 0;
+  for (int v = 0; v < 240; ++v) on_border += truth.contact_mask.at<std::uint8_t>(v, 0) || truth.contact_mask.at<std::uint8_t>(v, 319);
+  ASSERT_GT(on_border, 20);
+  auto rmse = [&](photometric::PoissonBorder border) {
+    photometric::DepthOptions options;
+    options.border = border;
+    photometric::PhotometricDepthSolver solver(sensor::load_photometric_calibration(file), options);
+    const auto r = solver.solve(sim.render().image, sim.render_reference().image);
+    double sum2 = 0;
+    int n = 0;
+    for (int v = 0; v < 240; ++v)
+      for (int u = 0; u < 320; ++u)
+        if (truth.contact_mask.at<std::uint8_t>(v, u)) {
+          const double e = r.height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
+          sum2 += e * e, ++n;
+        }
+    return std::sqrt(sum2 / n);
+  };
+  const double zero = rmse(photometric::PoissonBorder::Zero), free = rmse(photometric::PoissonBorder::Free);
+  std::cout << "contact off the image (" << on_border << " border rows): height RMSE " << zero << " mm (zero border), "
+            << free << " mm (free border)\n";
+  EXPECT_LT(free, 0.05);
+  EXPECT_GT(zero, 2 * free);
+}
+
+namespace {
+
+std::filesystem::path write_calibration(const TempDir& dir, const std::string& sensor, int w, int h) {
+  sensor::PhotometricCalibration c;
+  c.sensor = sensor;
+  c.width_px = w;
+  c.height_px = h;
+  c.mm_per_px = 0.06;
+  c.gel_thickness_mm = 2.5;
+  c.gx.assign(20, 0.0);
+  c.gy.assign(20, 0.0);
+  c.gx[1] = 1.0;
+  const auto file = dir / (sensor + ".yaml");
+  sensor::write_photometric_calibration(c, file);
+  return file;
+}
+
+MonoColourFramePtr frame(int w, int h, const std::string& sensor) {
+  auto f = std::make_shared<MonoColourFrame>();
+  f->image = cv::Mat(h, w, CV_8UC3, cv::Scalar::all(120));
+  f->sensor = sensor;
+  return f;
+}
+
+}  // namespace
+
+TEST(PhotometricDepth, RefusesAnImageOfAnotherSizeOrSensorThanTheCalibrations) {
+  TempDir dir;
+  StageHarness stage("photometric_depth", {{"calibration", write_calibration(dir, "gelsight_mini", 320, 240).string()}});
+  stage.configure();
+  const std::string size = input_error_of([&] {
+    stage.process({{"image", frame(160, 120, "gelsight_mini")}, {"reference", frame(320, 240, "gelsight_mini")}},
+                  {"height"});
+  });
+  EXPECT_NE(size.find("input 'image': the image is 160 x 120 px"), std::string::npos) << size;
+  EXPECT_NE(size.find("is for 320 x 240 px"), std::string::npos) << size;
+  const std::string sensor = input_error_of([&] {
+    stage.process({{"image", frame(320, 240, "gelsight_r15")}, {"reference", frame(320, 240, "gelsight_r15")}},
+                  {"height"});
+  });
+  EXPECT_NE(sensor.find("sensor 'gelsight_r15'"), std::string::npos) << sensor;
+  EXPECT_NE(sensor.find("sensor 'gelsight_mini'"), std::string::npos) << sensor;
+  // The same sensor and size: a flat height map.
+  const auto map = stage.process_one<HeightMapPtr>(
+      {{"image", frame(320, 240, "gelsight_mini")}, {"reference", frame(320, 240, "gelsight_mini")}}, "height");
+  EXPECT_EQ(cv::countNonZero(map->height_mm), 0);
+  EXPECT_EQ(map->sensor, "gelsight_mini");
+}
+
+TEST(PhotometricDepth, RefusesACalibrationFileWithoutItsSensorOrSize) {
+  TempDir dir;
+  write_file(dir / "bad.yaml", "photometric_calibration:\n  degree: 1\n  gx: [0, 1, 0, 0]\n  gy: [0, 0, 1, 0]\n");
+  StageHarness stage("photometric_depth", {{"calibration", (dir / "bad.yaml").string()}});
+  const std::string message = input_error_of([&] { stage.configure(); });
+  EXPECT_NE(message.find("photometric_calibration.sensor"), std::string::npos) << message;
+  EXPECT_NE(message.find("photometric_calibration.image_size_px: is missing"), std::string::npos) << message;
+}
+
+TEST(PhotometricDepth, TheCliExitsWithTwoOnACalibrationOfAnotherImageSize) {
+  TempDir dir;
+  const auto calibration = write_calibration(dir, "gelsight_mini", 160, 120);
+  const std::string scene = (source_dir() / "sample_clouds/fox_mask/scene_gelsight.yaml").string();
+  write_file(dir / "p.yaml", "pipeline: p\nstages:\n"
+             "  - id: touch\n    loop:\n      max_iterations: 300\n      until: sim.touch_done\n      stages:\n"
+             "        - {id: sim, plugin: touch_simulator, params: {scene: " + scene + ", target_xy_mm: [0, -46]},\n"
+             "           inputs: {contact: contact.state@previous}}\n"
+             "        - {id: contact, plugin: stable_contact, params: {threshold_mm: 0.3, frames: 3}, inputs: {tactile: sim.tactile}}\n"
+             "  - {id: depth, plugin: photometric_depth, params: {calibration: " + calibration.string() + "},\n"
+             "     inputs: {image: sim.image, reference: sim.image_reference}}\n"
+             "  - {id: cloud, plugin: height_to_cloud, inputs: {height: depth.height}}\n"
+             "  - {id: write, plugin: cloud_writer, params: {path: c.pcd}, inputs: {cloud: cloud.cloud}}\n");
+  const auto result = run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / "out").string()});
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("touchcloud: error:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("the image is 320 x 240 px, but the calibration"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("is for 160 x 120 px"), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "c.pcd"));
+}

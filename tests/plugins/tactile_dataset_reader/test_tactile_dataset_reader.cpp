@@ -1,0 +1,37 @@
+// tactile_dataset_reader refuses a dataset whose images and height maps do
+// not pair (naming both counts and the file), and derives a missing contact
+// mask from the height and dataset.yaml's threshold.
+#include <gtest/gtest.h>
+
+#include "tactile_dataset_fixture.hpp"
+
+using namespace touchcloud;
+using namespace touchcloud::test;
+namespace fs = std::filesystem;
+
+TEST(TactileDatasetReader, RefusesMismatchedImageAndDepthCountsNamingThem) {
+  TempDir dir;
+  const auto info = write_tactile_dataset(dir, 6);
+  fs::remove(info.parent_path() / "train/depths/000002.tiff");
+  StageHarness reader("tactile_dataset_reader", {{"dataset", info.string()}});
+  const std::string message = input_error_of([&] { reader.configure(); });
+  EXPECT_NE(message.find("images/ holds 5 images, depths/ 4 height maps"), std::string::npos) << message;
+  EXPECT_NE(message.find("image 000002.png has no height map"), std::string::npos) << message;
+  EXPECT_NE(message.find("train"), std::string::npos) << message;
+  // The other split is whole.
+  StageHarness validation("tactile_dataset_reader", {{"dataset", info.string()}, {"split", std::string("validation")}});
+  EXPECT_NO_THROW(validation.configure());
+}
+
+TEST(TactileDatasetReader, DerivesAMissingMaskFromTheHeightAndTheThreshold) {
+  TempDir dir;
+  const auto info = write_tactile_dataset(dir, 2);
+  fs::remove_all(info.parent_path() / "train/masks");
+  StageHarness reader("tactile_dataset_reader", {{"dataset", info.string()}});
+  reader.configure();
+  reader.process({}, {"height"});
+  const auto height = reader.process_one<HeightMapPtr>({}, "height");
+  const cv::Mat expected = tactile_sample(1).height->height_mm > 0.05;
+  EXPECT_EQ(cv::countNonZero(height->contact_mask != expected), 0);
+  EXPECT_GT(cv::countNonZero(expected), 0);
+}

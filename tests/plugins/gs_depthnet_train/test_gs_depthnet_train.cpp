@@ -1,6 +1,6 @@
-// gs_depthnet_train run by the CLI on a tiny seeded dataset (4 pairs of
-// 64 x 64 px, width 2): it writes the checkpoint and the curve, the same
-// bytes for the same seed, resumes, and refuses bad input with exit 2 and
+// gs_depthnet_train run by the CLI on a tiny seeded dataset (2 pairs of
+// 32 x 32 px, width 2): it writes the checkpoint and the curve, the same
+// weights for the same seed, resumes, and refuses bad input with exit 2 and
 // nothing written.
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@ std::string pipeline(const std::string& extra = "") {
 
 class TrainTiny : public ::testing::Test {
  protected:
-  TrainTiny() { tiny::write(dir_.path() / "data", 4, 64); }
+  TrainTiny() { tiny::write(dir_.path() / "data", 2, 32); }
   CliResult run(const std::string& yaml, const std::string& out, const std::vector<std::string>& more = {}) {
     write_file(dir_.path() / "p.yaml", yaml);
     std::vector<std::string> args{"run", (dir_.path() / "p.yaml").string(), "--out", (dir_.path() / out).string(),
@@ -46,7 +46,7 @@ TEST_F(TrainTiny, WritesTheCheckpointAndCurveTheSameForTheSameSeedAndResumes) {
   ASSERT_EQ(a.exit_code, 0) << a.err;
   const std::string ckpt = read_file(dir_.path() / "a" / "gs_depthnet.ckpt");
   EXPECT_EQ(ckpt.rfind("touchcloud checkpoint 1\narchitecture gs_depthnet\n", 0), 0u);
-  EXPECT_NE(ckpt.find("input 64 64 6\narch width 2\narch d_max_px 8\narch min_disparity_px 1\n"), std::string::npos);
+  EXPECT_NE(ckpt.find("input 32 32 6\narch width 2\narch d_max_px 8\narch min_disparity_px 1\n"), std::string::npos);
   const std::string csv = read_file(dir_.path() / "a" / "training_curve.csv");
   EXPECT_EQ(csv.rfind("epoch,learning_rate,seconds,loss,appearance,smoothness,lr_consistency,semantic,val_epe_px", 0), 0u) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);  // header + 2 epochs
@@ -117,7 +117,7 @@ TEST_F(TrainTiny, ResumingFromAnotherNetworkIsRefusedNamingBoth) {
 }
 
 TEST_F(TrainTiny, PairsWithoutContactMasksNeedTheReferenceRow) {
-  tiny::write(dir_.path() / "bare", 4, 64, /*with_masks=*/false);
+  tiny::write(dir_.path() / "bare", 2, 32, /*with_masks=*/false);
   const std::string index = "train.index=" + (dir_.path() / "bare" / "index.csv").string();
   const auto r = run(pipeline(), "out", {"--set", index, "--set", "train.epochs=1"});
   EXPECT_EQ(r.exit_code, 2) << r.err;

@@ -25,7 +25,7 @@ namespace lrn = touchcloud::learning;
 
 class GsDepthNetStage final : public Stage {
   std::string checkpoint_;
-  int threads_ = 2;
+  int threads_ = 1;
   // Found at check, built at configure.
   lrn::GsDepthNetShape shape_;
   std::optional<lrn::GsDepthNet> net_;
@@ -33,7 +33,10 @@ class GsDepthNetStage final : public Stage {
   void declare_parameters(ParameterSet& p) override {
     p.add("checkpoint", checkpoint_, std::string()).input_file()
         .doc("GS-DepthNet checkpoint written by gs_depthnet_train");
-    p.add("threads", threads_, 2).range(1, 256).doc("libtorch's intra-op threads");
+    // One thread: on a 2-core machine busy with anything else, libtorch's
+    // second thread waits for a core (bench_gs_depthnet: 27.5 ms per pair on
+    // one thread, 1.1 s on two, with a load average of 5).
+    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
   }
 
   void declare_ports(PortSet& ports) override {

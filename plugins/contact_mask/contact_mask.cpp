@@ -3,9 +3,10 @@
 // semantic mask, Section III, without a network): where the pressed gel has
 // moved the pattern (by about a pixel: the gel moves along the cameras'
 // rays), the colour changes a little; small specks are opened away and small
-// holes closed.
+// holes closed. The algorithm is region/contact_region.hpp.
 #include <opencv2/core/version.hpp>
-#include <opencv2/imgproc.hpp>
+
+#include "region/contact_region.hpp"
 
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
@@ -22,22 +23,20 @@ std::string size_text(const cv::Mat& m) { return std::to_string(m.cols) + " x " 
 }  // namespace
 
 class ContactMask final : public Stage {
-  double threshold_grey_ = 5;
-  int smoothing_px_ = 5;
-  int cleanup_px_ = 5;
+  contact_mask::ContactRegionOptions o_;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("threshold_grey", threshold_grey_, 5.0)
+    p.add("threshold_grey", o_.threshold_grey, 5.0)
         .unit("grey levels")
         .above(0)
         .below(255)
         .doc("least difference from the reference (largest over the colour channels, after smoothing) that "
              "counts as contact; above the smoothed noise (a pressed pattern moves by only about a pixel)");
-    p.add("smoothing_px", smoothing_px_, 5)
+    p.add("smoothing_px", o_.smoothing_px, 5)
         .unit("px")
         .range(0, 101)
         .doc("side of the box filter applied to the difference first (0: none); wider than the noise's grain");
-    p.add("cleanup_px", cleanup_px_, 5)
+    p.add("cleanup_px", o_.cleanup_px, 5)
         .unit("px")
         .range(0, 101)
         .doc("side of the square that opens away specks and closes holes in the mask (0: none)");
@@ -66,20 +65,7 @@ class ContactMask final : public Stage {
       throw InputError("input 'frame': the left image (" + size_text(frame->left) + " px, " +
                        cv::typeToString(frame->left.type()) + ") differs in size or type from input 'reference''s (" +
                        size_text(reference->left) + " px, " + cv::typeToString(reference->left.type()) + ")");
-    cv::Mat difference;
-    cv::absdiff(frame->left, reference->left, difference);
-    if (difference.channels() == 3) {
-      std::vector<cv::Mat> channels;
-      cv::split(difference, channels);
-      difference = cv::max(cv::max(channels[0], channels[1]), channels[2]);
-    }
-    if (smoothing_px_ > 1) cv::blur(difference, difference, cv::Size(smoothing_px_, smoothing_px_));
-    cv::Mat mask = difference > threshold_grey_;
-    if (cleanup_px_ > 1) {
-      const cv::Mat square = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(cleanup_px_, cleanup_px_));
-      cv::morphologyEx(mask, mask, cv::MORPH_OPEN, square);
-      cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, square);
-    }
+    const cv::Mat mask = contact_mask::contact_region(frame->left, reference->left, o_);
     auto maps = std::make_shared<DenseMaps>();
     maps->contact_mask = mask;
     maps->camera = frame->camera;

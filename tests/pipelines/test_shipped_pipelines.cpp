@@ -9,10 +9,24 @@
 using namespace touchcloud;
 namespace fs = std::filesystem;
 
+#ifdef TOUCHCLOUD_WITHOUT_NETWORKS
+namespace {
+bool read_network_plugins(const fs::path& file) {
+  return test::read_file(file).find("plugin: gs_depthnet") != std::string::npos;
+}
+}  // namespace
+#endif
+
 TEST(ShippedPipelines, EveryPipelineValidates) {
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(test::source_dir() / "pipelines"))
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path());
+    if (entry.path().extension() == ".yaml") {
+#ifdef TOUCHCLOUD_WITHOUT_NETWORKS
+      // Built without the learning library: the network pipelines name plugins this build lacks.
+      if (read_network_plugins(entry.path())) continue;
+#endif
+      files.push_back(entry.path());
+    }
   std::sort(files.begin(), files.end());
   ASSERT_GE(files.size(), 9u);
   PluginRegistry registry;

@@ -1,0 +1,134 @@
+// gs_depthnet_train run by the CLI on a tiny seeded dataset (2 pairs of
+// 32 x 32 px, width 2): it writes the checkpoint and the curve, the same
+// weights for the same seed, resumes, and refuses bad input with exit 2 and
+// nothing written.
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+#include "tiny_stereo_dataset.hpp"
+#include "touchcloud/learning/checkpoint.hpp"
+
+using namespace touchcloud;
+using namespace touchcloud::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string pipeline(const std::string& extra = "") {
+  return "pipeline: train_tiny\n"
+         "stages:\n"
+         "  - id: train\n"
+         "    plugin: gs_depthnet_train\n"
+         "    params: {index: data/index.csv, epochs: 2, batch_size: 2, width: 2, d_max_px: 8, min_disparity_px: 1,"
+         " constant_epochs: 1, halve_every: 1" + extra + "}\n";
+}
+
+class TrainTiny : public ::testing::Test {
+ protected:
+  TrainTiny() { tiny::write(dir_.path() / "data", 2, 32); }
+  CliResult run(const std::string& yaml, const std::string& out, const std::vector<std::string>& more = {}) {
+    write_file(dir_.path() / "p.yaml", yaml);
+    std::vector<std::string> args{"run", (dir_.path() / "p.yaml").string(), "--out", (dir_.path() / out).string(),
+                                  "--seed", "1"};
+    args.insert(args.end(), more.begin(), more.end());
+    return run_cli(args);
+  }
+  bool nothing_in(const std::string& out) const {
+    return !fs::exists(dir_.path() / out) || fs::is_empty(dir_.path() / out);
+  }
+  TempDir dir_;
+};
+
+}  // namespace
+
+TEST_F(TrainTiny, WritesTheCheckpointAndCurveTheSameForTheSameSeedAndResumes) {
+  const auto a = run(pipeline(), "a");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const std::string ckpt = read_file(dir_.path() / "a" / "gs_depthnet.ckpt");
+  EXPECT_EQ(ckpt.rfind("touchcloud checkpoint 1\narchitecture gs_depthnet\n", 0), 0u);
+  EXPECT_NE(ckpt.find("input 32 32 6\narch width 2\narch d_max_px 8\narch min_disparity_px 1\n"), std::string::npos);
+  const std::string csv = read_file(dir_.path() / "a" / "training_curve.csv");
+  EXPECT_EQ(csv.rfind("epoch,learning_rate,seconds,loss,appearance,smoothness,lr_consistency,semantic,val_epe_px", 0), 0u) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);  // header + 2 epochs
+  EXPECT_NE(csv.find("\n2,5e-05,"), std::string::npos) << csv;  // halved after constant_epochs 1
+  EXPECT_TRUE(fs::file_size(dir_.path() / "a" / "training_curve.png") > 1000);
+  EXPECT_NE(a.err.find("epoch 2/2"), std::string::npos) << a.err;  // progress per epoch
+
+  const auto b = run(pipeline(), "b");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  // Deterministic given --seed: the same header and weights, bit for bit.
+  // (Adam's state is keyed by libtorch with tensor addresses: its bytes differ.)
+  const auto first = learning::read_checkpoint(dir_.path() / "a" / "gs_depthnet.ckpt");
+  const auto second = learning::read_checkpoint(dir_.path() / "b" / "gs_depthnet.ckpt");
+  EXPECT_EQ(first.header.training_fields, second.header.training_fields);
+  EXPECT_TRUE(first.blob("weights", "a") == second.blob("weights", "b"));
+
+  // Resumed to 3 epochs: one more, at the rate of epoch 3.
+  const auto c = run(pipeline(), "c", {"--set", "train.epochs=3", "--set",
+                                        "train.resume_from=" + (dir_.path() / "a" / "gs_depthnet.ckpt").string()});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const std::string resumed = read_file(dir_.path() / "c" / "training_curve.csv");
+  EXPECT_EQ(std::count(resumed.begin(), resumed.end(), '\n'), 2) << resumed;
+  EXPECT_NE(resumed.find("\n3,2.5e-05,"), std::string::npos) << resumed;
+  EXPECT_NE(read_file(dir_.path() / "c" / "gs_depthnet.ckpt").find("train epochs_done 3\n"), std::string::npos);
+}
+
+TEST_F(TrainTiny, EachLossTermSwitchesOff) {
+  const auto r = run(pipeline(", lr_loss: false, se_loss: false"), "off", {"--set", "train.epochs=1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string csv = read_file(dir_.path() / "off" / "training_curve.csv");
+  const std::string row = csv.substr(csv.find('\n') + 1);
+  // epoch,lr,seconds,loss,appearance,smoothness,lr_consistency,semantic: the last two 0.
+  std::vector<std::string> cells;
+  std::stringstream in(row);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  ASSERT_GE(cells.size(), 8u) << row;
+  EXPECT_EQ(cells[6], "0");
+  EXPECT_EQ(cells[7], "0");
+  EXPECT_NE(cells[4], "0");
+  EXPECT_NE(read_file(dir_.path() / "off" / "gs_depthnet.ckpt").find("train lr_loss off\ntrain se_loss off\n"), std::string::npos);
+}
+
+TEST_F(TrainTiny, AnEmptyDatasetFolderIsRefusedNamingItsIndexAndNothingIsWritten) {
+  fs::create_directories(dir_.path() / "empty");
+  write_file(dir_.path() / "empty" / "index.csv", "index,timestamp_s,left,right,disparity_left,valid_left,"
+                                                   "disparity_right,valid_right,depth_mm,depth_valid,contact_mask\n");
+  write_file(dir_.path() / "empty" / "camera.yaml", read_file(dir_.path() / "data" / "camera.yaml"));
+  const auto r = run(pipeline(), "out", {"--set", "train.index=" + (dir_.path() / "empty" / "index.csv").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("empty/index.csv lists no pairs"), std::string::npos) << r.err;
+  EXPECT_TRUE(nothing_in("out"));
+  // A folder without an index at all.
+  const auto none = run(pipeline(), "out", {"--set", "train.index=" + (dir_.path() / "nothing" / "index.csv").string()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("nothing/index.csv"), std::string::npos) << none.err;
+  EXPECT_TRUE(nothing_in("out"));
+}
+
+TEST_F(TrainTiny, ResumingFromAnotherNetworkIsRefusedNamingBoth) {
+  ASSERT_EQ(run(pipeline(), "a").exit_code, 0);
+  const auto r = run(pipeline(), "out", {"--set", "train.width=3", "--set",
+                                         "train.resume_from=" + (dir_.path() / "a" / "gs_depthnet.ckpt").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("gs_depthnet.ckpt"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("width 2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("width 3"), std::string::npos) << r.err;
+  EXPECT_TRUE(nothing_in("out"));
+}
+
+TEST_F(TrainTiny, PairsWithoutContactMasksNeedTheReferenceRow) {
+  tiny::write(dir_.path() / "bare", 2, 32, /*with_masks=*/false);
+  const std::string index = "train.index=" + (dir_.path() / "bare" / "index.csv").string();
+  const auto r = run(pipeline(), "out", {"--set", index, "--set", "train.epochs=1"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("bare/index.csv:2: no contact_mask file, and reference_row is not set"), std::string::npos) << r.err;
+  EXPECT_TRUE(nothing_in("out"));
+  const auto bad_row = run(pipeline(", reference_row: 7"), "out", {"--set", index, "--set", "train.epochs=1"});
+  EXPECT_EQ(bad_row.exit_code, 2) << bad_row.err;
+  EXPECT_NE(bad_row.err.find("has no row with index 7"), std::string::npos) << bad_row.err;
+  const auto ok = run(pipeline(", reference_row: 0"), "ok", {"--set", index, "--set", "train.epochs=1"});
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  // Without the semantic term no mask is needed.
+  const auto no_se = run(pipeline(", se_loss: false"), "no_se", {"--set", index, "--set", "train.epochs=1"});
+  EXPECT_EQ(no_se.exit_code, 0) << no_se.err;
+}

@@ -2,6 +2,7 @@
 // colour-pattern GelStereo (seed 000, Eq. 7-9), in the sensor frame, and in
 // the base frame given the pose; with `refraction`, each pixel's two rays
 // traced through the plate as RSRT does (conversion/disparity_conversion.hpp).
+#include <numeric>
 #include <optional>
 
 #include "conversion/disparity_conversion.hpp"
@@ -87,9 +88,16 @@ class DisparityToCloud final : public Stage {
       disparity_to_cloud::ConversionCounts counts;
     };
     std::vector<Row> rows(static_cast<std::size_t>(size.height));
+    // The k-th row visited is (k * stride) mod height, the stride coprime to
+    // the height and near its golden section: each thread's contiguous block
+    // of k spreads over the whole image, so a contact region in a few rows
+    // is shared between the threads.
+    const auto height = static_cast<std::size_t>(size.height);
+    std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(0.618 * static_cast<double>(height)));
+    while (std::gcd(stride, height) != 1) ++stride;
     for_each_block(rows.size(), resolve_threads(threads_), 16, [&](std::size_t first, std::size_t last) {
-      for (int y = static_cast<int>(first); y < static_cast<int>(last); ++y)
-        for (int x = 0; x < size.width; ++x) {
+      for (std::size_t k = first; k < last; ++k)
+        for (int x = 0, y = static_cast<int>(k * stride % height); x < size.width; ++x) {
           Row& b = rows[static_cast<std::size_t>(y)];
           if (mask && !mask->at<std::uint8_t>(y, x)) continue;
           if (!maps.valid_left.at<std::uint8_t>(y, x)) continue;

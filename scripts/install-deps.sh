@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   python3-matplotlib python3-numpy python3-dev pybind11-dev python3-pytest
   libopenmpi-dev openmpi-bin
+  npm chromium
 )
 # scripts/fuzz.sh: Debian's clang with its libFuzzer and sanitizer runtimes.
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi

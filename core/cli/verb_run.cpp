@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "touchcloud/pipeline.hpp"
+#include "report.hpp"
 #include "seed_option.hpp"
 #include "verbs.hpp"
 
@@ -16,6 +17,7 @@ Action* add_run_verb(CLI::App& app) {
     std::uint64_t seed = 0;
     std::string out;
     bool quiet = false;
+    bool report = false;
   };
   static Options o;
   static Action action;
@@ -27,6 +29,7 @@ Action* add_run_verb(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", o.out, "output folder (default: out/<pipeline name>)");
   cmd->add_flag("-q,--quiet", o.quiet, "print no stage logs");
+  cmd->add_flag("--report", o.report, "also write report.html (touchcloud report) into the output folder");
   cmd->callback([] {
     action = [] {
       std::vector<Override> overrides;
@@ -57,6 +60,7 @@ Action* add_run_verb(CLI::App& app) {
                 << " (summary.json";
       for (const auto& f : r.record.outputs) std::cout << ", " << f;
       std::cout << ")\n";
+      if (o.report) std::cout << "wrote " << write_report(options.out_dir).string() << "\n";
       return kExitOk;
     };
   });

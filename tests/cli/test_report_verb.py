@@ -118,6 +118,21 @@ def test_folder_of_runs_draws_every_runs_curve(run_dir, tmp_path):
     assert data["folder_runs"] == 2
 
 
+def test_sweep_report_has_each_runs_curve_and_time(tmp_path):
+    out = tmp_path / "sweep"
+    r = cli("sweep", "pipelines/fox_mask_active.yaml", "--vary", "explore.max_iterations=4,5",
+            "--set", "surface.resolution=[60, 60]", "--out", out, "--report")
+    assert r.returncode == 0, r.stderr
+    assert f"wrote {out / 'report.html'}" in r.stdout
+    data = embedded_data((out / "report.html").read_text())
+    curves = data["chamfer"]["curves"]
+    assert [(c["label"], len(c["series"])) for c in curves] == [("runs/setting0_seed0", 4), ("runs/setting1_seed0", 5)]
+    for c in curves:
+        summary = json.loads((out / c["label"] / "summary.json").read_text())
+        assert c["final"] == summary["metrics"]["score.chamfer_est_to_gt"]["value"]
+        assert c["wall_time_s"] == summary["wall_time_s"]
+
+
 def chromium(*args):
     return subprocess.run([CHROMIUM, "--headless=new", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
                            "--hide-scrollbars", "--window-size=1200,1300", *args],

@@ -188,6 +188,15 @@
       axes: [{ label: "wall time (s)" }, { label: "final chamfer (" + data.chamfer.unit + ")", size: 60 }] }, [xs, ys, front], box);
   })();
 
+  // Images among the run's outputs (sensing pipelines), as written.
+  (data.images || []).forEach(function (im) {
+    document.getElementById("tc-images-section").hidden = false;
+    var fig = el("figure"), img = el("img");
+    img.alt = im.name; img.src = "data:" + im.mime + ";base64," + im.base64;
+    fig.appendChild(img); fig.appendChild(el("figcaption", im.name));
+    document.getElementById("tc-images").appendChild(fig);
+  });
+
   // Tables.
   table("tc-metrics", ["metric", "final value", "unit"], data.metrics);
   table("tc-params", ["stage", "plugin", "parameter", "value"], data.params);

@@ -2,6 +2,8 @@
 #include "report_run_folder.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <iterator>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -280,6 +282,30 @@ json report_data(const std::vector<RunFolder>& runs) {
     clouds["touch_points"] = c;
   }
   if (!others.empty()) clouds["other"] = others;
+
+  // Images among the outputs (a sensing pipeline's views, disparity or
+  // height maps written as pictures), shown as they are.
+  json images = json::array();
+  if (s.contains("outputs") && s["outputs"].is_array())
+    for (const json& o : s["outputs"]) {
+      if (!o.is_string()) continue;
+      const std::string name = o.get<std::string>();
+      std::string ext = fs::path(name).extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      const char* mime = ext == ".png" ? "image/png" : (ext == ".jpg" || ext == ".jpeg") ? "image/jpeg" : nullptr;
+      if (!mime) continue;
+      std::error_code ec;
+      const auto bytes = fs::file_size(run.dir / name, ec);
+      if (ec || bytes > kMaxReportImageBytes || images.size() >= kMaxReportImages) {
+        missing.push_back("image " + name + (ec ? ": not found" : ": more than the page holds (at most " +
+                                                                     std::to_string(kMaxReportImages) + " of 3 MB)"));
+        continue;
+      }
+      std::ifstream in(run.dir / name, std::ios::binary);
+      const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      images.push_back({{"name", name}, {"mime", mime}, {"base64", base64(content.data(), content.size())}});
+    }
+  data["images"] = images;
 
   // Touch targets: the planner's grid cells.
   if (const json* plan = stage_of(s, "next_touch"); plan && plan->contains("params")) {

@@ -3,6 +3,7 @@
 // read and checked, and turned into the data the page draws.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -27,11 +28,15 @@ nlohmann::json read_run_summary(const std::filesystem::path& file);
 
 // Points kept per cloud in the page (a regular stride through the file).
 inline constexpr std::size_t kMaxReportPoints = 50'000;
+// Images (PNG, JPEG outputs) embedded as they are: at most this many, each
+// at most this size.
+inline constexpr std::size_t kMaxReportImages = 8;
+inline constexpr std::uintmax_t kMaxReportImageBytes = 3'000'000;
 
 // The page's data: curves of every run; stage times, parameters, versions,
 // metrics and the clouds (surface, ground truth, touch points coloured by
-// touch, touch targets, the surface's distance to the ground truth) of the
-// first run. What cannot be shown is listed under "missing".
+// touch, touch targets, the surface's distance to the ground truth) and
+// images of the first run. What cannot be shown is listed under "missing".
 nlohmann::json report_data(const std::vector<RunFolder>& runs);
 
 }  // namespace touchcloud::cli

@@ -81,7 +81,7 @@ def test_report_is_self_contained_complete_and_deterministic(run_dir, tmp_path):
     assert curve["series"] == summary["metrics"]["score.chamfer_est_to_gt"]["series"]
     assert len(curve["series"]) == 6
     clouds = data["clouds"]
-    assert data["missing"] == [], data["missing"]
+    assert data["missing"] == [] and data["images"] == [], data["missing"]
     assert clouds["surface"]["points"] == 80 * 80 - summary["metrics"]["surface.extrapolated_points"]["value"]
     assert clouds["ground_truth"]["points"] > 1_000_000 and clouds["ground_truth"]["shown"] <= 50_000
     assert clouds["touch_points"]["points"] == summary["metrics"]["dedup.total_points"]["value"]
@@ -116,6 +116,25 @@ def test_folder_of_runs_draws_every_runs_curve(run_dir, tmp_path):
     assert [(c["label"], len(c["series"])) for c in data["chamfer"]["curves"]] == [
         ("runs/setting0_seed1", 6), ("runs/setting1_seed1", 2)]
     assert data["folder_runs"] == 2
+
+
+def test_image_outputs_are_embedded_and_missing_ones_named(run_dir, tmp_path):
+    import base64
+    import numpy as np
+    import matplotlib.image
+    folder = tmp_path / "run"
+    shutil.copytree(run_dir, folder)
+    matplotlib.image.imsave(str(folder / "left.png"), np.linspace(0, 1, 64 * 48).reshape(48, 64))
+    s = json.loads((folder / "summary.json").read_text())
+    s["outputs"] += ["left.png", "gone.png"]
+    (folder / "summary.json").write_text(json.dumps(s))
+    r = cli("report", folder)
+    assert r.returncode == 0, r.stderr
+    data = embedded_data((folder / "report.html").read_text())
+    (image,) = data["images"]
+    assert (image["name"], image["mime"]) == ("left.png", "image/png")
+    assert base64.b64decode(image["base64"]) == (folder / "left.png").read_bytes()
+    assert data["missing"] == ["image gone.png: not found"]
 
 
 def test_sweep_report_has_each_runs_curve_and_time(tmp_path):

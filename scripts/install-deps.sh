@@ -12,6 +12,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   libfftw3-dev
   libtorch-dev
+  npm chromium
 )
 # scripts/fuzz.sh: Debian's clang with its libFuzzer and sanitizer runtimes.
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi

@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
       add_plugins_verb(app),
       add_score_verb(app),
       add_sweep_verb(app),
+      add_report_verb(app),
   };
 
   try {

@@ -5,6 +5,7 @@
 
 #include "progress_line.hpp"
 #include "touchcloud/pipeline.hpp"
+#include "report.hpp"
 #include "seed_option.hpp"
 #include "verbs.hpp"
 
@@ -17,6 +18,7 @@ Action* add_run_verb(CLI::App& app) {
     std::uint64_t seed = 0;
     std::string out;
     bool quiet = false, progress = false;
+    bool report = false;
   };
   static Options o;
   static Action action;
@@ -31,6 +33,7 @@ Action* add_run_verb(CLI::App& app) {
   cmd->add_flag("--progress", o.progress,
                 "show the run's progress (iterations of its loop, rate, time left) also when stderr is not a "
                 "terminal (logs, CI)");
+  cmd->add_flag("--report", o.report, "also write report.html (touchcloud report) into the output folder");
   cmd->callback([] {
     action = [] {
       std::vector<Override> overrides;
@@ -71,6 +74,7 @@ Action* add_run_verb(CLI::App& app) {
                 << " (summary.json";
       for (const auto& f : r.record.outputs) std::cout << ", " << f;
       std::cout << ")\n";
+      if (o.report) std::cout << "wrote " << write_report(options.out_dir).string() << "\n";
       return kExitOk;
     };
   });

@@ -16,6 +16,7 @@
 #include "mpi_dispatch.hpp"
 #include "progress_line.hpp"
 #include "sweep_grid.hpp"
+#include "report.hpp"
 #include "sweep_rows.hpp"
 #include "touchcloud/pipeline.hpp"
 #include "seed_option.hpp"
@@ -62,6 +63,7 @@ Action* add_sweep_verb(CLI::App& app) {
     int repeats = 1;
     std::uint64_t seed = 0;
     bool resume = false, progress = false;
+    bool report = false;
   };
   static Options o;
   static Action action;
@@ -79,6 +81,7 @@ Action* add_sweep_verb(CLI::App& app) {
                 "keep the successful runs an earlier, stopped sweep left in DIR/sweep.csv and run only the others");
   cmd->add_option("--accuracy", o.accuracy,
                   "metric plotted as accuracy, lower is better (default: the first metric whose name has 'chamfer')");
+  cmd->add_flag("--report", o.report, "also write report.html (touchcloud report of the sweep's folder) into --out");
   cmd->add_option("--time", o.time, "column plotted as time (wall_time_s or time_STAGE_s)")->capture_default_str();
   cmd->callback([] {
     action = [] {
@@ -212,6 +215,7 @@ Action* add_sweep_verb(CLI::App& app) {
         return kExitRunFailed;
       };
       if (!first_ok) return status();
+      if (o.report) std::cout << "wrote " << write_report(out).string() << "\n";
       std::string accuracy = o.accuracy;
       if (accuracy.empty())
         for (const auto& [name, v] : first_ok->metrics)

@@ -15,6 +15,7 @@ Action* add_validate_verb(CLI::App& app);
 Action* add_plugins_verb(CLI::App& app);
 Action* add_score_verb(CLI::App& app);
 Action* add_sweep_verb(CLI::App& app);
+Action* add_report_verb(CLI::App& app);
 
 // Help of --set, shared by run and validate: where relative paths start.
 inline constexpr const char* kSetHelp =

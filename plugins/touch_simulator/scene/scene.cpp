@@ -92,15 +92,7 @@ void read_effects(const YAML::Node& node, Scene& scene, ConfigProblems& problems
 }  // namespace
 
 Scene load_scene(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError("scene file " + absolute_text(file) + " does not exist or is not a file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    throw InputError("scene file " + file.string() + " is not valid YAML: " + e.msg,
-                     {file.string(), e.mark.line + 1, e.mark.column + 1});
-  }
+  const YAML::Node root = config::load_yaml_file(file, "scene file");
   ConfigProblems problems(file);
   if (!root || root.IsNull()) throw InputError("scene file " + file.string() + " is empty", {file.string()});
   Scene scene;

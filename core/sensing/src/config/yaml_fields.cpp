@@ -1,5 +1,6 @@
 #include "touchcloud/config/yaml_fields.hpp"
 #include "touchcloud/number_text.hpp"
+#include "touchcloud/path_text.hpp"
 #include "touchcloud/parameters.hpp"
 
 #include <cmath>
@@ -175,6 +176,18 @@ Eigen::Isometry3d read_pose(ConfigFields& pose, Eigen::Vector3d* rpy_deg_out) {
   t.linear() = rpy_rotation(rpy[0], rpy[1], rpy[2]);
   t.translation() = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
   return t;
+}
+
+YAML::Node load_yaml_file(const std::filesystem::path& file, const std::string& what) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(what + " " + absolute_text(file) + " does not exist or is not a file");
+  try {
+    return YAML::LoadFile(file.string());
+  } catch (const YAML::Exception& e) {
+    throw InputError(what + " " + file.string() + " is not valid YAML: " + e.msg,
+                     {file.string(), e.mark.line + 1, e.mark.column + 1});
+  }
 }
 
 }  // namespace touchcloud::config

@@ -37,16 +37,7 @@ std::string tactile_dataset_info_text(const TactileDatasetInfo& info) {
 }
 
 TactileDatasetInfo read_tactile_dataset_info(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError("dataset file " + absolute_text(file) + " does not exist or is not a file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    throw InputError("dataset file " + file.string() + " is not valid YAML: " + e.msg,
-                     {file.string(), e.mark.line + 1, e.mark.column + 1});
-  }
+  const YAML::Node root = config::load_yaml_file(file, "dataset file");
   if (!root || !root.IsMap() || !root["tactile_dataset"])
     throw InputError("dataset file " + file.string() + " has no 'tactile_dataset:' section", {file.string()});
   config::ConfigProblems problems(file, "dataset file");

@@ -217,15 +217,7 @@ void read_gelstereo_sensor(ConfigFields& f, ConfigProblems& problems, GelStereoS
 }
 
 GelStereoSensor load_gelstereo_sensor(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw InputError("sensor file " + absolute_text(file) + " does not exist or is not a file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    throw InputError("sensor file " + file.string() + " is not valid YAML: " + e.msg,
-                     {file.string(), e.mark.line + 1, e.mark.column + 1});
-  }
+  const YAML::Node root = config::load_yaml_file(file, "sensor file");
   if (!root || !root.IsMap() || !root["sensor"] || root["sensor"].IsNull())
     throw InputError("sensor file " + file.string() + " has no 'sensor:' section (gel, markers, plate, cameras)",
                      {file.string()});

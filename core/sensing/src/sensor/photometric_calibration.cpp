@@ -98,16 +98,7 @@ void write_photometric_calibration(const PhotometricCalibration& c, const fs::pa
 }
 
 PhotometricCalibration load_photometric_calibration(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError("calibration file " + absolute_text(file) + " does not exist or is not a file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    throw InputError("calibration file " + file.string() + " is not valid YAML: " + e.msg,
-                     {file.string(), e.mark.line + 1, e.mark.column + 1});
-  }
+  const YAML::Node root = config::load_yaml_file(file, "calibration file");
   if (!root || !root.IsMap() || !root["photometric_calibration"])
     throw InputError("calibration file " + file.string() + " has no 'photometric_calibration:' section",
                      {file.string()});

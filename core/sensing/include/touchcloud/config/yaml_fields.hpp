@@ -77,6 +77,11 @@ class ConfigFields {
 // R = Rz(yaw) Ry(pitch) Rx(roll), angles in degrees.
 Eigen::Matrix3d rpy_rotation(double roll_deg, double pitch_deg, double yaw_deg);
 
+// A YAML file's root; InputError "<what> PATH does not exist or is not a
+// file" or "<what> PATH is not valid YAML: ..." (with its line and column).
+// `what` names the kind of file: "sensor file", "scene file", ...
+YAML::Node load_yaml_file(const std::filesystem::path& file, const std::string& what);
+
 // A pose field {xyz_mm: [x, y, z], rpy_deg: [roll, pitch, yaw]} (both
 // optional, zero by default); `rpy_deg_out` receives the angles as given.
 Eigen::Isometry3d read_pose(ConfigFields& pose, Eigen::Vector3d* rpy_deg_out = nullptr);

@@ -12,8 +12,11 @@ packages=(
   libopenmpi-dev openmpi-bin
   libfftw3-dev
   libtorch-dev
-  npm chromium
+  chromium
 )
+# The report's JavaScript comes through npm: Debian's package, unless an npm
+# is there already (NodeSource's nodejs bundles one and conflicts with it).
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 # scripts/fuzz.sh: Debian's clang with its libFuzzer and sanitizer runtimes.
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()

@@ -3,8 +3,14 @@
 #include <sstream>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/library_versions.hpp"
 
 namespace touchcloud::learning {
+
+namespace {
+// Recorded in summary.json's versions whenever a network plugin loads this library.
+const LibraryVersion torch_version("libtorch", TORCH_VERSION);
+}  // namespace
 
 std::string module_bytes(const torch::nn::Module& module) {
   torch::serialize::OutputArchive archive;

@@ -96,9 +96,10 @@ class DisparityToCloud final : public Stage {
     std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(0.618 * static_cast<double>(height)));
     while (std::gcd(stride, height) != 1) ++stride;
     for_each_block(rows.size(), resolve_threads(threads_), 16, [&](std::size_t first, std::size_t last) {
-      for (std::size_t k = first; k < last; ++k)
-        for (int x = 0, y = static_cast<int>(k * stride % height); x < size.width; ++x) {
-          Row& b = rows[static_cast<std::size_t>(y)];
+      for (std::size_t k = first; k < last; ++k) {
+        const int y = static_cast<int>(k * stride % height);
+        Row& b = rows[static_cast<std::size_t>(y)];
+        for (int x = 0; x < size.width; ++x) {
           if (mask && !mask->at<std::uint8_t>(y, x)) continue;
           if (!maps.valid_left.at<std::uint8_t>(y, x)) continue;
           ++b.counts.pixels;
@@ -114,6 +115,7 @@ class DisparityToCloud final : public Stage {
           }
           b.points.emplace_back(y * size.width + x, *p);
         }
+      }
     });
     std::vector<std::pair<int, Eigen::Vector3d>> out;
     for (const Row& b : rows) {

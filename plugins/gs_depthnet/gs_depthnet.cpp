@@ -10,16 +10,11 @@
 #include "touchcloud/learning/checkpoint.hpp"
 #include "touchcloud/learning/gs_depthnet.hpp"
 #include "touchcloud/learning/torch_io.hpp"
-#include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/colour_stereo_frame.hpp"
 #include "touchcloud/types/dense_maps.hpp"
 
 namespace touchcloud {
-
-namespace {
-const LibraryVersion torch_version("libtorch", TORCH_VERSION);
-}  // namespace
 
 namespace lrn = touchcloud::learning;
 

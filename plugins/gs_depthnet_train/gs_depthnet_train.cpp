@@ -17,15 +17,10 @@
 #include "touchcloud/learning/torch_io.hpp"
 #include "touchcloud/learning/training_loop.hpp"
 #include "touchcloud/file_write.hpp"
-#include "touchcloud/library_versions.hpp"
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
 
 namespace touchcloud {
-
-namespace {
-const LibraryVersion torch_version("libtorch", TORCH_VERSION);
-}  // namespace
 
 namespace lrn = touchcloud::learning;
 

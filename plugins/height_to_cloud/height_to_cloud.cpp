@@ -58,13 +58,11 @@ class HeightToCloud final : public Stage {
     if (need_contact && (map->contact_mask.size() != h.size() || map->contact_mask.type() != CV_8UC1))
       throw InputError("input 'height': points: contact needs a CV_8UC1 contact mask of the height map's size");
     if (!(map->mm_per_px > 0)) throw InputError("input 'height': mm_per_px is not positive");
-    for (int v = 0; v < h.rows; ++v)
-      for (int u = 0; u < h.cols; ++u)
-        if (!std::isfinite(h.at<float>(v, u)))
-          throw InputError("input 'height': height_mm at pixel (" + std::to_string(u) + ", " + std::to_string(v) +
-                           ") of frame " + std::to_string(map->index) + " is " +
-                           (std::isnan(h.at<float>(v, u)) ? "NaN" : "infinite") +
-                           " (invalid pixels hold 0 and are marked in 'valid')");
+    if (cv::Point at; !cv::checkRange(h, true, &at))
+      throw InputError("input 'height': height_mm at pixel (" + std::to_string(at.x) + ", " + std::to_string(at.y) +
+                       ") of frame " + std::to_string(map->index) + " is " +
+                       (std::isnan(h.at<float>(at)) ? "NaN" : "infinite") +
+                       " (invalid pixels hold 0 and are marked in 'valid')");
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -82,6 +80,7 @@ class HeightToCloud final : public Stage {
     if (const auto* p = io.optional_input<SensorPose>("pose")) pose = *p;
     auto points = std::make_shared<PointCloud>(), reference = std::make_shared<PointCloud>();
     auto base = std::make_shared<PointCloud>();
+    const bool want_base = io.wants("cloud_base");
     auto tactile = std::make_shared<TactileCloud>();
     const cv::Mat& h = map->height_mm;
     for (int v = stride_px_ / 2; v < h.rows; v += stride_px_)
@@ -90,10 +89,12 @@ class HeightToCloud final : public Stage {
         if (points_ == HeightPoints::Contact && !flat_press && !map->contact_mask.at<std::uint8_t>(v, u)) continue;
         const double height = flat_press ? *flat_press_mm_ : h.at<float>(v, u);
         const Eigen::Vector3d p = map->sensor_point(u, v, height), r = map->sensor_point(u, v, 0);
-        const Eigen::Vector3d b = pose.base_from_sensor * p;
         points->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
         reference->push_back(pcl::PointXYZ(float(r.x()), float(r.y()), float(r.z())));
-        base->push_back(pcl::PointXYZ(float(b.x()), float(b.y()), float(b.z())));
+        if (want_base) {
+          const Eigen::Vector3d b = pose.base_from_sensor * p;
+          base->push_back(pcl::PointXYZ(float(b.x()), float(b.y()), float(b.z())));
+        }
         tactile->displacement_mm.push_back(std::abs(height));
         tactile->marker_ids.push_back(v * h.cols + u);
       }
@@ -107,7 +108,7 @@ class HeightToCloud final : public Stage {
       io.output<TactileCloudPtr>("tactile", tactile);
     }
     if (io.wants("cloud")) io.output<CloudConstPtr>("cloud", points);
-    if (io.wants("cloud_base")) io.output<CloudConstPtr>("cloud_base", base);
+    if (want_base) io.output<CloudConstPtr>("cloud_base", base);
   }
 };
 

@@ -117,14 +117,14 @@ class TouchSimulator final : public Stage {
   }
 
   void on_configure(RunContext& ctx) override {
-    if (scene_.family == sensor::SensorFamily::GelSight) return configure_gelsight(ctx);
-    sim_ = std::make_unique<touch_simulator::TouchSimulation>(scene_, ctx.rng()(), object_);
     const touch_simulator::RobotSpec& r = scene_.robot;
     ctx.used("speed_mm_s", r.speed_mm_s);
     ctx.used("approach_speed_mm_s", r.approach_speed_mm_s);
     ctx.used("press_depth_mm", r.press_depth_mm);
     ctx.used("safe_clearance_mm", r.safe_clearance_mm);
     ctx.used("max_contact_depth_mm", r.max_contact_depth_mm);
+    if (scene_.family == sensor::SensorFamily::GelSight) return configure_gelsight(ctx);
+    sim_ = std::make_unique<touch_simulator::TouchSimulation>(scene_, ctx.rng()(), object_);
     const auto& layout = sim_->markers();
     rest_cloud_ = to_cloud(layout.rest_mm);
     marker_ids_.resize(layout.rest_mm.size());
@@ -163,12 +163,6 @@ class TouchSimulator final : public Stage {
 
   void configure_gelsight(RunContext& ctx) {
     gelsight_ = std::make_unique<touch_simulator::GelSightSimulation>(scene_, ctx.rng()(), object_);
-    const touch_simulator::RobotSpec& r = scene_.robot;
-    ctx.used("speed_mm_s", r.speed_mm_s);
-    ctx.used("approach_speed_mm_s", r.approach_speed_mm_s);
-    ctx.used("press_depth_mm", r.press_depth_mm);
-    ctx.used("safe_clearance_mm", r.safe_clearance_mm);
-    ctx.used("max_contact_depth_mm", r.max_contact_depth_mm);
     ctx.note("effects", scene_.effects.str());
     const auto& s = scene_.gelsight;
     std::ostringstream text;

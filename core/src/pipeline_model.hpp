@@ -88,6 +88,10 @@ struct ResolvedStage {
   std::map<std::string, SourceLocation> param_where;  // those set in the file or by --set
   std::vector<ResolvedInput> inputs;
   std::set<std::string> wanted_outputs;  // read by some stage or a loop's `until`
+  // Of those, the ones read inside this stage's innermost loop (by a stage
+  // in it, from the previous iteration, or as its `until`); the others are
+  // read only after the loop.
+  std::set<std::string> read_in_loop;
   std::unique_ptr<RunContext> context;
   // Runs on the pipeline's background thread, overlapping the stages after
   // it (pipeline_runner.cpp); its calls stay in order.

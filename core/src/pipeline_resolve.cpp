@@ -294,6 +294,7 @@ class Resolver {
           continue;
         }
         stages_.at(ref.stage)->wanted_outputs.insert(ref.output);
+        if (ref.previous || inside_innermost_loop_of(n.id, ref.stage)) stages_.at(ref.stage)->read_in_loop.insert(ref.output);
         ResolvedInput r{ref.port, ref.stage + "." + ref.output, nullptr};
         if (ref.previous) {
           r.previous_of = common_loop(n.id, ref.stage);
@@ -374,6 +375,16 @@ class Resolver {
     }
     loops_.at(n.id)->until_key = n.until->stage + "." + n.until->output;
     stages_.at(n.until->stage)->wanted_outputs.insert(n.until->output);
+    stages_.at(n.until->stage)->read_in_loop.insert(n.until->output);
+  }
+
+  // Whether `reader` runs inside the innermost loop around `producer` (false
+  // when the producer is in no loop: then nothing is read "after" it).
+  bool inside_innermost_loop_of(const std::string& reader, const std::string& producer) const {
+    const auto& around = nodes_.at(producer).loops;
+    if (around.empty()) return true;
+    const auto& reader_loops = nodes_.at(reader).loops;
+    return std::find(reader_loops.begin(), reader_loops.end(), around.back()) != reader_loops.end();
   }
 
   const ResolvedLoop* common_loop(const std::string& a, const std::string& b) {

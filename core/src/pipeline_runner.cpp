@@ -109,6 +109,7 @@ class Runner {
                          (names.empty() ? "none" : names) + ")");
       }
       (*stage)->wanted_outputs.insert(port);
+      (*stage)->read_in_loop.insert(port);  // every call's value may be the one captured
     }
   }
 
@@ -125,6 +126,11 @@ class Runner {
     loop.iterations_run = 0;
     auto& previous = previous_[&loop];
     previous.clear();
+    // Outputs read only after this loop may be skipped on all but its last
+    // call: a value from an earlier run of the loop must not stand in for it.
+    for (auto* s : loop.stages)
+      if (!s->loops.empty() && s->loops.back() == &loop)
+        for (const auto& port : after_loop_outputs(*s)) values_.erase(s->id + "." + port);
     for (std::int64_t i = 0; i < loop.max_iterations; ++i) {
       if (i > 0) {
         previous.clear();
@@ -153,7 +159,16 @@ class Runner {
     std::vector<std::pair<std::string, Value>> inputs;
     for (const auto& in : s.inputs) {
       const auto& source = in.previous_of ? previous_[in.previous_of] : values_;
-      if (auto it = source.find(in.key); it != source.end()) inputs.emplace_back(in.port, it->second);
+      if (auto it = source.find(in.key); it != source.end()) {
+        inputs.emplace_back(in.port, it->second);
+      } else if (!in.previous_of) {  // wired, and not from an iteration yet to come
+        s.context->set_iteration(s.iteration);
+        timed(s, "process", s.timing.process_s, [&] {
+          throw RunError("input '" + in.port + "' has no value: " + in.key +
+                         " was not produced (its stage produces it only on the call that ends its loop, and the "
+                         "loop ended without it)");
+        });
+      }
     }
     if (s.background) {
       submit_background(s, std::move(inputs));
@@ -168,10 +183,20 @@ class Runner {
     std::map<std::string, std::any> resolved;
     for (const auto& [port, value] : inputs)
       if (auto v = resolve(value)) resolved[port] = std::move(*v);
-    StageIO io(*s.ports, std::move(resolved), s.wanted_outputs);
+    const bool final_call = s.loops.empty() || s.iteration == s.loops.back()->max_iterations - 1;
+    StageIO io(*s.ports, std::move(resolved), s.wanted_outputs, after_loop_outputs(s), final_call);
     timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
     ++s.timing.calls;
     return std::move(io.outputs());
+  }
+
+  // The stage's outputs read only after its innermost loop.
+  static std::set<std::string> after_loop_outputs(const ResolvedStage& s) {
+    std::set<std::string> out;
+    if (s.loops.empty()) return out;
+    for (const auto& port : s.wanted_outputs)
+      if (!s.read_in_loop.count(port)) out.insert(port);
+    return out;
   }
 
   void submit_background(ResolvedStage& s, std::vector<std::pair<std::string, Value>> inputs) {

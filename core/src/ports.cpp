@@ -13,8 +13,13 @@ const PortSpec* find_port(const std::vector<PortSpec>& ports, std::string_view n
 const PortSpec* PortSet::find_input(std::string_view name) const { return find_port(inputs_, name); }
 const PortSpec* PortSet::find_output(std::string_view name) const { return find_port(outputs_, name); }
 
-StageIO::StageIO(const PortSet& ports, std::map<std::string, std::any> inputs, std::set<std::string> wanted)
-    : ports_(ports), inputs_(std::move(inputs)), wanted_(std::move(wanted)) {}
+StageIO::StageIO(const PortSet& ports, std::map<std::string, std::any> inputs, std::set<std::string> wanted,
+                 std::set<std::string> after_loop, bool final_call)
+    : ports_(ports),
+      inputs_(std::move(inputs)),
+      wanted_(std::move(wanted)),
+      after_loop_(std::move(after_loop)),
+      final_call_(final_call) {}
 
 bool StageIO::has(std::string_view input) const { return inputs_.count(std::string(input)) > 0; }
 
@@ -23,8 +28,9 @@ const std::any& StageIO::input_any(std::string_view name) const {
   if (it != inputs_.end()) return it->second;
   if (!ports_.find_input(name))
     throw RunError("the stage asked for input '" + std::string(name) + "', which it never declared");
-  throw RunError("input '" + std::string(name) + "' has no value (an optional input not wired, or fed "
-                 "from a previous iteration that has not happened yet)");
+  throw RunError("input '" + std::string(name) + "' has no value (an optional input not wired, fed from a "
+                 "previous iteration that has not happened yet, or an output that its stage produces only on "
+                 "the call that ends its loop, which ended without it)");
 }
 
 std::string StageIO::type_mismatch(std::string_view name, const char* wanted, const char* held) const {

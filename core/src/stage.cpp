@@ -30,7 +30,7 @@ void Stage::process(StageIO& io, RunContext& ctx) {
   on_process(io, ctx);
   if (!ports_) return;
   for (const auto& out : ports_->outputs())
-    if (io.wants(out.name) && !io.outputs().count(out.name))
+    if (io.wants(out.name) && !io.outputs().count(out.name) && !io.wanted_after_loop_only(out.name))
       throw RunError("the stage did not produce its output '" + out.name + "'");
 }
 

@@ -50,6 +50,58 @@ TEST_F(PipelineRunner, OnlyOutputsThatAreReadMustBeProduced) {
   EXPECT_EQ(series(r, "c.done_computed").at(0), 4);
 }
 
+// c counts 1, 2, 3, ... within a run of its loop.
+const std::string kAccumulate = "          inputs: {previous: c.value@previous}\n";
+
+TEST_F(PipelineRunner, AnOutputReadOnlyAfterItsLoopIsMadeOnTheCallThatEndsTheLoop) {
+  // Ended by the stage's own 'until' flag at its third call of 30.
+  const std::string after = "  - id: keep\n    plugin: test_counter\n    params: {step: 0}\n    inputs: {previous: c.record}\n";
+  RunResult r = run("stages:\n  - id: l\n    loop:\n      max_iterations: 30\n      until: c.done\n      stages:\n"
+                    "        - id: c\n          plugin: test_counter\n          params: {stop_at: 3}\n" + kAccumulate + after);
+  EXPECT_EQ(series(r, "c.record_computed").at(0), 1);
+  EXPECT_EQ(series(r, "keep.value").at(0), 3);
+  // Ended by its iteration count: made on the last call.
+  r = run("stages:\n  - id: l\n    loop:\n      max_iterations: 4\n      stages:\n"
+          "        - id: c\n          plugin: test_counter\n" + kAccumulate + after);
+  EXPECT_EQ(series(r, "c.record_computed").at(0), 1);
+  EXPECT_EQ(series(r, "keep.value").at(0), 4);
+  // Read inside the loop as well: made on every call.
+  r = run("stages:\n  - id: l\n    loop:\n      max_iterations: 4\n      stages:\n"
+          "        - id: c\n          plugin: test_counter\n" + kAccumulate +
+          "        - id: inside\n          plugin: test_counter\n          inputs: {previous: c.record}\n" + after);
+  EXPECT_EQ(series(r, "c.record_computed").at(0), 4);
+  EXPECT_EQ(series(r, "keep.value").at(0), 4);
+  // Read in the outer loop after an inner one: once per run of the inner loop, each run's last value.
+  r = run("stages:\n  - id: outer\n    loop:\n      max_iterations: 2\n      stages:\n"
+          "        - id: inner\n          loop:\n            max_iterations: 3\n            stages:\n"
+          "              - id: c\n                plugin: test_counter\n"
+          "                inputs: {previous: c.value@previous}\n"
+          "        - id: keep\n          plugin: test_counter\n          params: {step: 0}\n"
+          "          inputs: {previous: c.record}\n");
+  EXPECT_EQ(series(r, "c.record_computed").at(0), 2);
+  EXPECT_EQ(series(r, "keep.value"), (std::vector<double>{3, 3}));
+}
+
+TEST_F(PipelineRunner, AnOutputItsLoopEndedWithoutIsAnErrorNeverAnEarlierRunsValue) {
+  // The first run of the inner loop makes the record on its last call (3);
+  // the second run does not make it. The reader must not get the first
+  // run's value.
+  try {
+    run("stages:\n  - id: outer\n    loop:\n      max_iterations: 2\n      stages:\n"
+        "        - id: inner\n          loop:\n            max_iterations: 3\n            stages:\n"
+        "              - id: c\n                plugin: test_counter\n"
+        "                params: {record_only_at_call: 3}\n"
+        "                inputs: {previous: c.value@previous}\n"
+        "        - id: keep\n          plugin: test_counter\n          inputs: {previous: c.record}\n");
+    FAIL() << "no error";
+  } catch (const RunError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("stage 'keep' (plugin test_counter) failed in process in iteration 1: input 'previous' has no "
+                       "value: c.record was not produced (its stage produces it only on the call that ends its loop, "
+                       "and the loop ended without it)"), std::string::npos) << msg;
+  }
+}
+
 TEST_F(PipelineRunner, AWiredOutputThatIsNotProducedFailsTheRun) {
   try {
     run("stages:\n  - id: bad\n    plugin: test_throwing\n    params: {fail_at: 99, skip_output: true}\n"

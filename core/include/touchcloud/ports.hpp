@@ -72,12 +72,24 @@ class PortSet {
 class StageIO {
  public:
   // `wanted`: the outputs some stage reads; the others need not be produced.
-  StageIO(const PortSet& ports, std::map<std::string, std::any> inputs, std::set<std::string> wanted);
+  // `after_loop`: those of them that only stages after this stage's
+  // innermost loop read (what they see is the loop's last value);
+  // `final_call`: this call is the loop's last by its iteration count (or
+  // the stage is in no loop).
+  StageIO(const PortSet& ports, std::map<std::string, std::any> inputs, std::set<std::string> wanted,
+          std::set<std::string> after_loop = {}, bool final_call = true);
 
   bool has(std::string_view input) const;
   // Whether anything reads output `name`: a stage can skip work (rendering,
   // say) that no later stage consumes.
   bool wants(std::string_view output) const { return wanted_.count(std::string(output)) > 0; }
+  // Whether output `name` is read only after this stage's loop ends. Such an
+  // output need be produced only on the call that ends the loop: on the last
+  // iteration by count (final_call()), or when the stage itself sets the
+  // loop's `until` flag (a simulator's recorded frame). Rendering every
+  // frame of a touch for a writer that keeps the last one is then skipped.
+  bool wanted_after_loop_only(std::string_view output) const { return after_loop_.count(std::string(output)) > 0; }
+  bool final_call() const { return final_call_; }
   // The input's value; throws RunError when it is absent or of another type.
   template <class T>
   const T& input(std::string_view name) const {
@@ -106,6 +118,8 @@ class StageIO {
   std::map<std::string, std::any> inputs_;
   std::map<std::string, std::any> outputs_;
   std::set<std::string> wanted_;
+  std::set<std::string> after_loop_;
+  bool final_call_ = true;
 };
 
 }  // namespace touchcloud

@@ -24,7 +24,7 @@ GelSightSimulation::GelSightSimulation(Scene scene, std::uint64_t noise_seed,
                                        std::shared_ptr<const ObjectSurface> object)
     : scene_(require_gelsight(scene)),
       noise_seed_(noise_seed),
-      motion_(scene_.robot, scene_.gelsight.fps),
+      motion_(scene_.robot, scene_.gelsight.fps, noise_seed),
       renderer_(scene_.gelsight) {
   object_ = object ? std::move(object) : std::shared_ptr<const ObjectSurface>(make_object_surface(scene_.object));
   const EffectSet& fx = scene_.effects;

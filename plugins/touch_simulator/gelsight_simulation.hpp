@@ -61,6 +61,8 @@ class GelSightSimulation {
   const GelSightFrame& frame() const;  // RunError before the first step
   // How far the pressed pad's face (at its centre) stayed above the object's surface at the target.
   double apex_above_target_surface_mm() const;
+  // The further press of the touch under way, mm (robot.press_depth_range_mm draws one per touch).
+  double press_depth_mm() const { return motion_.press_depth_mm(); }
 
   MonoColourFrame render();
   MonoColourFrame render_reference();

@@ -49,7 +49,7 @@ std::shared_ptr<const MarkerLayout> gel_marker_layout(const Scene& scene) {
 }
 
 TouchSimulation::TouchSimulation(Scene scene, std::uint64_t noise_seed, std::shared_ptr<const ObjectSurface> object)
-    : scene_(std::move(scene)), noise_seed_(noise_seed), motion_(scene_.robot, scene_.sensor.fps) {
+    : scene_(std::move(scene)), noise_seed_(noise_seed), motion_(scene_.robot, scene_.sensor.fps, noise_seed) {
   const EffectSet& fx = scene_.effects;
   object_ = object ? std::move(object) : std::shared_ptr<const ObjectSurface>(make_object_surface(scene_.object));
   layout_ = gel_marker_layout(scene_);

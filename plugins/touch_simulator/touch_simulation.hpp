@@ -75,6 +75,8 @@ class TouchSimulation {
   // about minus the press depth when the gel reached the target, far above 0
   // when something higher under the gel (a rim, the object's side) stopped it.
   double apex_above_target_surface_mm() const;
+  // The further press of the touch under way, mm (robot.press_depth_range_mm draws one per touch).
+  double press_depth_mm() const { return motion_.press_depth_mm(); }
 
   // Simulates the next frame (see TouchMotion for the touch's course).
   const SimulatedFrame& step(const Eigen::Vector2d& target_xy_mm, bool previous_stable);

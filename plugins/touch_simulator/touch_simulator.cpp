@@ -42,7 +42,7 @@ class TouchSimulator final : public Stage {
   std::string scene_file_;
   // Not set: the scene's robot section says.
   std::optional<double> speed_mm_s_, approach_speed_mm_s_, press_depth_mm_, safe_clearance_mm_, max_contact_depth_mm_;
-  std::optional<std::array<double, 2>> target_xy_mm_;
+  std::optional<std::array<double, 2>> target_xy_mm_, press_depth_range_mm_;
   double reach_tolerance_mm_ = 15.0;
   long unreachable_touches_ = 0;
 
@@ -65,6 +65,15 @@ class TouchSimulator final : public Stage {
         .doc("descent speed until the first frame with contact (0: speed_mm_s; not set: the scene's)");
     p.add("press_depth_mm", press_depth_mm_).unit("mm").at_least(0)
         .doc("further press after stable contact (not set: the scene's)");
+    p.add("press_depth_range_mm", press_depth_range_mm_).unit("mm").range(0.0, 1000.0)
+        .doc("[min, max]: each touch's further press drawn uniformly from it, keyed by --seed and the touch's "
+             "number (a dataset of many press depths); instead of press_depth_mm");
+    p.rule({"press_depth_range_mm", "press_depth_mm"}, [this]() -> std::optional<std::string> {
+      if (!press_depth_range_mm_) return std::nullopt;
+      if (press_depth_mm_) return "is set, and so is press_depth_mm: set one";
+      if ((*press_depth_range_mm_)[0] > (*press_depth_range_mm_)[1]) return "has its minimum above its maximum";
+      return std::nullopt;
+    });
     p.add("safe_clearance_mm", safe_clearance_mm_).unit("mm").at_least(0)
         .doc("gel apex above the highest object point under the gel at the start (not set: the scene's)");
     p.add("max_contact_depth_mm", max_contact_depth_mm_).unit("mm").above(0)
@@ -113,6 +122,7 @@ class TouchSimulator final : public Stage {
                                 {&press_depth_mm_, &r.press_depth_mm}, {&safe_clearance_mm_, &r.safe_clearance_mm},
                                 {&max_contact_depth_mm_, &r.max_contact_depth_mm}})
       if (*value) *field = **value;
+    r.press_depth_range_mm = press_depth_range_mm_;
     object_ = touch_simulator::make_object_surface(scene_.object);
   }
 
@@ -172,6 +182,14 @@ class TouchSimulator final : public Stage {
     ctx.log(text.str());
   }
 
+  // Images and their truth cost most of a frame. One that only stages after
+  // the touch loop read (a dataset writer keeping the recorded frame) is
+  // made on the recorded frame and on the loop's last call alone; its
+  // noise is keyed by frame, so it is the same image either way.
+  static bool frame_needs(const StageIO& io, const char* name, bool recorded) {
+    return io.wants(name) && (!io.wanted_after_loop_only(name) || recorded || io.final_call());
+  }
+
   static void refuse(StageIO& io, std::initializer_list<const char*> outputs, const std::string& why) {
     for (const char* name : outputs)
       if (io.wants(name)) throw InputError("output '" + std::string(name) + "' was read, but " + why);
@@ -188,11 +206,12 @@ class TouchSimulator final : public Stage {
     if (io.wants("tactile"))
       io.output<TactileCloudPtr>("tactile", std::make_shared<TactileCloud>(gelsight_->truth_tactile(truth_stride_px_)));
     if (io.wants("truth_base")) io.output<CloudConstPtr>("truth_base", gelsight_->truth_base(truth_stride_px_));
-    if (io.wants("image")) io.output<MonoColourFramePtr>("image", std::make_shared<MonoColourFrame>(gelsight_->render()));
-    if (io.wants("image_reference"))
+    const auto needed = [&](const char* name) { return frame_needs(io, name, f.touch.pressed); };
+    if (needed("image")) io.output<MonoColourFramePtr>("image", std::make_shared<MonoColourFrame>(gelsight_->render()));
+    if (needed("image_reference"))
       io.output<MonoColourFramePtr>("image_reference",
                                     std::make_shared<MonoColourFrame>(gelsight_->render_reference()));
-    if (io.wants("height_truth"))
+    if (needed("height_truth"))
       io.output<HeightMapPtr>("height_truth",
                               std::make_shared<HeightMap>(gelsight_->height_truth(truth_contact_threshold_mm_)));
     if (io.wants("pose")) io.output("pose", pose);
@@ -200,6 +219,7 @@ class TouchSimulator final : public Stage {
     if (f.touch.pressed) {
       ctx.metric("touch_frames", f.touch.frame_in_touch + 1, "frames");
       ctx.metric("press_travel_mm", f.travel_past_contact_mm, "mm");
+      ctx.metric("press_depth_mm", gelsight_->press_depth_mm(), "mm");
       report_reach(f.touch, gelsight_->apex_above_target_surface_mm(), ctx);
     }
   }
@@ -227,20 +247,22 @@ class TouchSimulator final : public Stage {
       io.output<TactileCloudPtr>("tactile", tactile);
     }
     if (io.wants("truth_base")) io.output<CloudConstPtr>("truth_base", to_cloud(f.gel.markers_base_mm));
-    if (io.wants("markers")) io.output<MarkerSetPtr>("markers", std::make_shared<MarkerSet>(sim_->marker_set()));
-    if (io.wants("frame")) io.output<StereoFramePtr>("frame", std::make_shared<StereoFrame>(sim_->render()));
-    if (io.wants("colour_frame"))
+    const auto needed = [&](const char* name) { return frame_needs(io, name, f.touch.pressed); };
+    if (needed("markers")) io.output<MarkerSetPtr>("markers", std::make_shared<MarkerSet>(sim_->marker_set()));
+    if (needed("frame")) io.output<StereoFramePtr>("frame", std::make_shared<StereoFrame>(sim_->render()));
+    if (needed("colour_frame"))
       io.output<ColourStereoFramePtr>("colour_frame", std::make_shared<ColourStereoFrame>(sim_->render_colour()));
-    if (io.wants("colour_reference"))
+    if (needed("colour_reference"))
       io.output<ColourStereoFramePtr>("colour_reference",
                                       std::make_shared<ColourStereoFrame>(sim_->render_colour_reference()));
-    if (io.wants("dense_truth")) io.output<DenseMapsPtr>("dense_truth", std::make_shared<DenseMaps>(sim_->dense_truth()));
+    if (needed("dense_truth")) io.output<DenseMapsPtr>("dense_truth", std::make_shared<DenseMaps>(sim_->dense_truth()));
     if (io.wants("pose")) io.output("pose", pose);
     if (io.wants("touch_done")) io.output("touch_done", f.touch.pressed);
 
     if (f.touch.pressed) {
       ctx.metric("touch_frames", f.touch.frame_in_touch + 1, "frames");
       ctx.metric("press_travel_mm", f.travel_past_contact_mm, "mm");
+      ctx.metric("press_depth_mm", sim_->press_depth_mm(), "mm");
       report_reach(f.touch, sim_->apex_above_target_surface_mm(), ctx);
     }
   }

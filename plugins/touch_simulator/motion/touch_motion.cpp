@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "render/counter_random.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud::touch_simulator {
@@ -23,6 +24,12 @@ TouchStep TouchMotion::next(const Eigen::Vector2d& target_xy_mm, double start_he
     target_ = target_xy_mm;
     height_ = start_height_mm;
     first_contact_.reset();
+    press_depth_mm_ = robot_.press_depth_mm;
+    if (const auto& range = robot_.press_depth_range_mm) {
+      constexpr std::uint64_t kPressDepth = 21;  // the draw stream of press depths
+      press_depth_mm_ = (*range)[0] + ((*range)[1] - (*range)[0]) *
+                                          uniform_from(draw_key(seed_, {kPressDepth, static_cast<std::uint64_t>(touch_)}));
+    }
   } else {
     if (target_xy_mm != target_) {
       std::ostringstream s;
@@ -33,7 +40,7 @@ TouchStep TouchMotion::next(const Eigen::Vector2d& target_xy_mm, double start_he
     }
     ++frame_;
     pressed_ = previous_stable;
-    height_ -= previous_stable ? robot_.press_depth_mm : first_contact_ ? step_mm_ : approach_step_mm_;
+    height_ -= previous_stable ? press_depth_mm_ : first_contact_ ? step_mm_ : approach_step_mm_;
   }
   TouchStep step;
   step.touch = touch_;

@@ -7,6 +7,7 @@
 // `press_depth_mm` further: that frame is the recorded one, and the touch ends.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -28,8 +29,10 @@ Eigen::Isometry3d downward_sensor_pose(const Eigen::Vector2d& xy_mm, double heig
 
 class TouchMotion {
  public:
-  TouchMotion(const RobotSpec& robot, double fps)
+  // `seed` keys the press depth drawn per touch when the robot has a press_depth_range_mm.
+  TouchMotion(const RobotSpec& robot, double fps, std::uint64_t seed = 0)
       : robot_(robot),
+        seed_(seed),
         step_mm_(robot.speed_mm_s / fps),
         approach_step_mm_((robot.approach_speed_mm_s > 0 ? robot.approach_speed_mm_s : robot.speed_mm_s) / fps) {}
 
@@ -46,9 +49,13 @@ class TouchMotion {
   void observe_overlap(bool overlapping);
   double travel_past_contact_mm() const { return first_contact_ ? *first_contact_ - height_ : 0.0; }
   const RobotSpec& robot() const { return robot_; }
+  // The further press of the touch under way (or the last one), mm.
+  double press_depth_mm() const { return press_depth_mm_; }
 
  private:
   RobotSpec robot_;
+  std::uint64_t seed_;
+  double press_depth_mm_ = robot_.press_depth_mm;
   double step_mm_, approach_step_mm_;
   bool touching_ = false;
   int touch_ = -1, frame_ = 0;

@@ -3,6 +3,9 @@
 // mm, angles in degrees. See sample_clouds/README.md for the format.
 #pragma once
 
+#include <array>
+#include <optional>
+
 #include <filesystem>
 #include <string>
 
@@ -32,6 +35,10 @@ struct RobotSpec {
   // 0: speed_mm_s all the way.
   double approach_speed_mm_s = 0.0;
   double press_depth_mm = 1.5;         // further press after stable contact
+  // Set: each touch's further press is drawn uniformly from [min, max] mm
+  // instead (a dataset's presses of many depths), keyed by the seed and the
+  // touch's number.
+  std::optional<std::array<double, 2>> press_depth_range_mm;
   double safe_clearance_mm = 2.0;      // gel apex above the highest point under the gel
   double max_contact_depth_mm = 10.0;  // past first contact without stability: error
 };

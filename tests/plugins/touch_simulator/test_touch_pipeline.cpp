@@ -134,6 +134,65 @@ TEST_F(TouchPipeline, APipelineThatReadsImagesGetsOneStereoFramePerCameraFrame) 
   EXPECT_GT(metric(r, "sink.last_mean_grey"), 100);
 }
 
+// A writer after the touch loop keeps the recorded frame only: the images
+// are rendered for that frame alone, and they are the very images the
+// every-frame pipeline renders for it (the noise is keyed by frame).
+TEST_F(TouchPipeline, ImagesReadOnlyAfterTheTouchAreRenderedForTheRecordedFrameAlone) {
+  scene("[contact, refraction, render, pixel_noise, blur, marker_dropout, pose_noise]");
+  const std::string after =
+      "  - id: after\n"
+      "    plugin: test_sim_sink\n"
+      "    inputs: {frame: sim.frame, markers: sim.markers}\n";
+  const RunResult every = run(loop(kTarget, kFromContact, kContactStage + kSink) + after, 5);
+  const RunResult recorded = run(loop(kTarget, kFromContact, kContactStage) + after, 5);
+  EXPECT_EQ(metric(every, "sim.frames_rendered"), kFramesPerTouch);
+  EXPECT_EQ(metric(recorded, "sim.frames_rendered"), 1);
+  EXPECT_EQ(metric(recorded, "sim.frames_simulated"), kFramesPerTouch);
+  EXPECT_EQ(metric(recorded, "after.frames"), 1);
+  EXPECT_EQ(metric(recorded, "after.image_hash"), metric(every, "after.image_hash"));
+  EXPECT_EQ(metric(recorded, "after.marker_hash"), metric(every, "after.marker_hash"));
+  // A loop that ends by its count before the touch is done still gives its last frame.
+  const RunResult cut = run(loop(kTarget, kFromContact, kContactStage, 12) + after, 5);
+  EXPECT_EQ(cut.loop_iterations.at(0).second, 12);
+  EXPECT_EQ(metric(cut, "sim.frames_rendered"), 1);
+  EXPECT_EQ(metric(cut, "after.frames"), 1);
+}
+
+// press_depth_range_mm draws each touch's further press: seeded, within the
+// range, and pressed (the travel past first contact is the 4.0 mm to
+// stable contact plus the drawn depth).
+TEST_F(TouchPipeline, EachTouchPressesADepthDrawnFromTheRange) {
+  scene("[contact]");
+  const std::string yaml =
+      "stages:\n  - id: touches\n    loop:\n      max_iterations: 4\n      stages:\n"
+      "        - id: touch\n          loop:\n            max_iterations: 200\n            until: sim.touch_done\n"
+      "            stages:\n"
+      "              - id: sim\n                plugin: touch_simulator\n"
+      "                params: {scene: scene.yaml, target_xy_mm: [3, -2], press_depth_range_mm: [0.5, 2.0]}\n"
+      "                inputs: {contact: contact.state@previous}\n"
+      "              - id: contact\n                plugin: stable_contact\n                inputs: {tactile: sim.tactile}\n";
+  const RunResult a = run(yaml, 7), b = run(yaml, 7), c = run(yaml, 8);
+  const auto& depths = a.record.metrics.at("sim.press_depth_mm").values;
+  const auto& travel = a.record.metrics.at("sim.press_travel_mm").values;
+  ASSERT_EQ(depths.size(), 4u);
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    EXPECT_GE(depths[i], 0.5);
+    EXPECT_LE(depths[i], 2.0);
+    EXPECT_NEAR(travel[i] - depths[i], 4.0, 1e-9) << "touch " << i;
+  }
+  EXPECT_NE(depths[0], depths[1]);
+  EXPECT_EQ(b.record.metrics.at("sim.press_depth_mm").values, depths);
+  EXPECT_NE(c.record.metrics.at("sim.press_depth_mm").values, depths);
+  // One way to say the depth, and a range that is one.
+  for (const auto& [overrides, why] : std::vector<std::pair<std::vector<Override>, std::string>>{
+           {{{"sim.press_depth_mm", "1.0"}}, "is set, and so is press_depth_mm"},
+           {{{"sim.press_depth_range_mm", "[2.0, 0.5]"}}, "has its minimum above its maximum"}}) {
+    const auto diagnostics = errors(yaml, overrides);
+    ASSERT_FALSE(diagnostics.empty()) << why;
+    EXPECT_TRUE(touchcloud::test::mentions(diagnostics[0], why)) << diagnostics[0].str();
+  }
+}
+
 TEST_F(TouchPipeline, ReadingImagesFromASceneWithoutRenderIsBadInput) {
   scene("[contact]");
   try {

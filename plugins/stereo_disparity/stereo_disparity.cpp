@@ -45,6 +45,9 @@ class StereoDisparity final : public Stage {
         .unit("px")
         .at_least(0)
         .doc("largest difference between the left and the right view's disparity that the check accepts");
+    p.add("full_width", o_.full_width, false)
+        .doc("pad the pair so that the first min_disparity_px + num_disparities columns, which OpenCV leaves "
+             "unmatched, are matched too");
     // OpenCV's own limits, checked by `validate`: each rule blames its parameter.
     auto opencv_rule = [this](const std::string& parameter) -> std::optional<std::string> {
       try {

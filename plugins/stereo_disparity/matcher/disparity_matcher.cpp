@@ -52,9 +52,14 @@ void MatcherOptions::validate() const {
 
 DisparityMatcher::DisparityMatcher(const MatcherOptions& options) : options_(options) { options_.validate(); }
 
-cv::Mat DisparityMatcher::raw_disparity(const cv::Mat& left, const cv::Mat& right) const {
+cv::Mat DisparityMatcher::raw_disparity(const cv::Mat& left_in, const cv::Mat& right_in) const {
   const MatcherOptions& o = options_;
-  cv::Mat raw;
+  const int pad = o.full_width ? o.min_disparity_px + o.num_disparities : 0;
+  cv::Mat left = left_in, right = right_in, raw;
+  if (pad > 0) {
+    cv::copyMakeBorder(left_in, left, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    cv::copyMakeBorder(right_in, right, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar::all(0));
+  }
   if (o.method == MatchMethod::BlockMatching) {
     cv::Mat left_grey = left, right_grey = right;
     if (left.channels() == 3) {
@@ -74,7 +79,7 @@ cv::Mat DisparityMatcher::raw_disparity(const cv::Mat& left, const cv::Mat& righ
                                        32 * channels * area, -1, 0, o.uniqueness_ratio, 0, 0, cv::StereoSGBM::MODE_SGBM);
     sgbm->compute(left, right, raw);
   }
-  return raw;
+  return pad > 0 ? raw.colRange(pad, raw.cols).clone() : raw;
 }
 
 DisparityPair DisparityMatcher::match(const cv::Mat& left, const cv::Mat& right, const std::string& where) const {

@@ -22,6 +22,12 @@ struct MatcherOptions {
   int uniqueness_ratio = 10;     // percent margin by which the best cost must win
   bool lr_check = true;
   double max_lr_difference_px = 1.0;
+  // OpenCV leaves the first min_disparity_px + num_disparities columns of the
+  // reference view unmatched (their whole search range would have to lie in
+  // the image). With full_width, both images are padded on that side by as
+  // many black columns, so a column is matched whenever its match is in the
+  // other image: a gel near the image's edge is matched too.
+  bool full_width = false;
 
   // Throws ParameterError naming the parameter (block_size_px, num_disparities,
   // ...) whose value OpenCV's matcher would refuse, and why.

@@ -101,6 +101,39 @@ TEST(DisparityMatcher, RecoversTheTruthOnASpherePress) {
   expect_recovers(p, MatchMethod::BlockMatching, 15, "sphere");
 }
 
+TEST(DisparityMatcher, FullWidthMatchesTheColumnsOpenCvLeavesOut) {
+  const Pressed p = press(tilted_plane_obj(10.0, 10.0), "tilted.obj");
+  const int cols = p.frame.left.cols, rows = p.frame.left.rows;
+  MatcherOptions o = options(MatchMethod::SemiGlobal, 7);
+  o.num_disparities = 176;  // a wide search: OpenCV skips the first 272 columns, a third of the gel
+  const int skipped = o.min_disparity_px + o.num_disparities;
+  const cv::Rect edge(0, 0, skipped, rows), rest(skipped, 0, cols - skipped, rows);
+  const int gel_at_edge = cv::countNonZero(p.truth.valid_left(edge));
+  ASSERT_GT(gel_at_edge, 10000);
+  const DisparityPair plain = DisparityMatcher(o).match(p.frame.left, p.frame.right, "plain");
+  EXPECT_EQ(cv::countNonZero(plain.valid_left(edge)), 0);
+  o.full_width = true;
+  const DisparityPair full = DisparityMatcher(o).match(p.frame.left, p.frame.right, "full");
+  const int matched = cv::countNonZero(full.valid_left(edge) & p.truth.valid_left(edge));
+  std::cout << "full width: " << matched << " of the " << gel_at_edge << " gel px in the first " << skipped
+            << " columns matched\n";
+  EXPECT_GT(matched, 0.7 * gel_at_edge);
+  // Where a narrower search (the first 208 columns skipped) matches them,
+  // the full-width matches agree with it: the padding adds columns, it does
+  // not change what a column matches. (The gel's steep rim lies in these
+  // columns: against the truth both err there alike, by about 1 px.)
+  MatcherOptions narrow = options(MatchMethod::SemiGlobal, 7);
+  const DisparityPair near = DisparityMatcher(narrow).match(p.frame.left, p.frame.right, "narrow");
+  const cv::Rect band(narrow.min_disparity_px + narrow.num_disparities, 0, skipped - 208, rows);
+  const cv::Mat both_band = near.valid_left(band) & full.valid_left(band);
+  ASSERT_GT(cv::countNonZero(both_band), 1000);
+  EXPECT_LT(cv::norm(full.left_px(band), near.left_px(band), cv::NORM_L1, both_band) / cv::countNonZero(both_band), 0.1);
+  // Beyond the skipped columns, the same matches as without padding.
+  const cv::Mat both = plain.valid_left(rest) & full.valid_left(rest);
+  EXPECT_GT(cv::countNonZero(both), 0.9 * cv::countNonZero(plain.valid_left(rest)));
+  EXPECT_LT(cv::norm(full.left_px(rest), plain.left_px(rest), cv::NORM_L1, both) / cv::countNonZero(both), 0.05);
+}
+
 TEST(DisparityMatcher, LeftRightCheckDropsWhatTheOtherViewContradicts) {
   DisparityPair pair;
   pair.left_px = cv::Mat(1, 8, CV_32FC1, cv::Scalar(2.0f));

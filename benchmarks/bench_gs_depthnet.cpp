@@ -3,7 +3,8 @@
 // 25 ms on an RTX GPU, 45 ms on a laptop GPU), with libtorch's thread count
 // stated, and OpenCV's SGBM (block 7, 32 disparities from 52 px: the same
 // range) on the same pair in the same run. Weights are the network's
-// seeded initial ones: the time does not depend on their values.
+// seeded initial ones and the rest disparity a constant 60 px: the time
+// depends on neither.
 //   build/benchmarks/bin/bench_gs_depthnet --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
@@ -11,6 +12,7 @@
 
 #include "matcher/disparity_matcher.hpp"
 #include "touchcloud/learning/gs_depthnet.hpp"
+#include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/torch_io.hpp"
 
 namespace lrn = touchcloud::learning;
@@ -32,12 +34,14 @@ void GsDepthNetInference(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const int width = static_cast<int>(state.range(1));
   torch::set_num_threads(threads);
+  lrn::keep_freed_memory_for_reuse();  // as the gs_depthnet stage does
   torch::manual_seed(1);
   lrn::GsDepthNetShape shape;
   shape.width = width;
-  shape.min_disparity_px = 52;
-  shape.d_max_px = 32;
-  lrn::GsDepthNet net(shape);
+  lrn::ReferenceDisparity rest;
+  rest.left_px = rest.right_px = cv::Mat(256, 256, CV_32FC1, cv::Scalar(60));
+  rest.gel_left = rest.gel_right = cv::Mat(256, 256, CV_8UC1, cv::Scalar(255));
+  lrn::GsDepthNet net(shape, rest);
   net->eval();
   const Pair p = pattern_pair();
   torch::NoGradGuard no_grad;

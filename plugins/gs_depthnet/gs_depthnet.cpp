@@ -9,6 +9,7 @@
 
 #include "touchcloud/learning/checkpoint.hpp"
 #include "touchcloud/learning/gs_depthnet.hpp"
+#include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/torch_io.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/colour_stereo_frame.hpp"
@@ -50,11 +51,13 @@ class GsDepthNetStage final : public Stage {
 
   void on_configure(RunContext& ctx) override {
     torch::set_num_threads(threads_);
+    lrn::keep_freed_memory_for_reuse();  // a pass's activations are not faulted in again
     ctx.used("threads", static_cast<std::int64_t>(torch::get_num_threads()));
     try {
       const lrn::Checkpoint c = lrn::read_checkpoint(checkpoint_);
       lrn::require_same_network(c.header, shape_.header(), checkpoint_);
-      lrn::GsDepthNet net(shape_);
+      lrn::GsDepthNet net(shape_, lrn::ReferenceDisparity::parse(c.blob("rest_disparity", checkpoint_),
+                                                                 checkpoint_));
       lrn::load_module_bytes(*net, c.blob("weights", checkpoint_), checkpoint_);
       net->eval();
       net_ = net;

@@ -9,10 +9,13 @@
 #include <cmath>
 #include <optional>
 
+#include "matcher/disparity_matcher.hpp"
 #include "region/contact_region.hpp"
 #include "touchcloud/learning/checkpoint.hpp"
 #include "touchcloud/learning/gs_depthnet.hpp"
+#include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/image_losses.hpp"
+#include "touchcloud/learning/reference_disparity.hpp"
 #include "touchcloud/learning/stereo_samples.hpp"
 #include "touchcloud/learning/torch_io.hpp"
 #include "touchcloud/learning/training_loop.hpp"
@@ -26,18 +29,22 @@ namespace lrn = touchcloud::learning;
 
 class GsDepthNetTrain final : public Stage {
   std::string index_;
-  std::optional<std::string> extra_index_, resume_from_;
+  std::optional<std::string> extra_index_, resume_from_, rest_index_;
   std::string checkpoint_, curve_csv_, curve_png_;
   int epochs_ = 40, batch_size_ = 8, threads_ = 2;
+  std::optional<int> crop_rows_;
   lrn::LearningRateSchedule schedule_;
   std::array<double, 2> betas_{0.9, 0.999};
   double epsilon_ = 1e-8;
   lrn::LossWeights weights_;
   lrn::GsDepthNetShape shape_;
-  std::optional<long> reference_row_;
+  enum class ContactMasks { RestPair, Dataset };
+  ContactMasks contact_masks_ = ContactMasks::RestPair;
   contact_mask::ContactRegionOptions contact_;
+  stereo_disparity::MatcherOptions reference_matcher_;
   // Read at check.
   std::vector<lrn::StereoSample> samples_;
+  std::optional<lrn::StereoSample> rest_pair_;
   std::optional<lrn::Checkpoint> resume_;
 
   void declare_parameters(ParameterSet& p) override {
@@ -72,25 +79,45 @@ class GsDepthNetTrain final : public Stage {
     p.add("se_loss", weights_.semantic, true).doc("use the contact semantic term (false: Table I's 'Ours no SE')");
     p.add("width", shape_.width, 8).range(1, 256).unit("channels").doc("channels of the first encoder block (the network's width)");
     p.add("d_max_px", shape_.d_max_px, 12.0).above(0).unit("px")
-        .doc("output range above min_disparity_px: offset + d_max * sigmoid (the paper: 12 px at 256 x 256)");
-    p.add("min_disparity_px", shape_.min_disparity_px, 0.0).at_least(0).unit("px")
-        .doc("smallest disparity the network outputs (as stereo_disparity's): the rest disparity of the gel");
-    p.add("reference_row", reference_row_).at_least(0)
-        .doc("index of the dataset's no-contact pair: the contact masks of rows without a contact_mask file come "
-             "from the difference to it (contact_mask's algorithm); not set: every row must list a contact_mask");
-    p.add("contact_threshold_grey", contact_.threshold_grey, 5.0).above(0).below(255).unit("grey levels")
-        .doc("contact_mask's threshold_grey for the masks computed against reference_row");
+        .doc("output range above min_disparity_px, relative to the gel at rest: offset + d_max * sigmoid (the "
+             "paper: 12 px at 256 x 256)");
+    p.add("min_disparity_px", shape_.min_disparity_px, -1.0).unit("px")
+        .doc("smallest disparity the network outputs, relative to the gel at rest (the paper: 0; below 0 leaves "
+             "room for the rest disparity's fitting error)");
+    p.add("rest_index", rest_index_).input_file()
+        .doc("index.csv whose first pair shows the gel at rest (no contact), as the training pairs are "
+             "rectified: SGBM's disparities of it are the network's zero (needed unless resume_from is set)");
+    p.add("reference_min_disparity_px", reference_matcher_.min_disparity_px, 0).unit("px")
+        .doc("smallest disparity SGBM searches in the rest pair");
+    p.add("reference_num_disparities", reference_matcher_.num_disparities, 128).range(16, 1024).unit("px")
+        .doc("disparities SGBM searches for the rest disparity, from reference_min_disparity_px (a multiple of 16)");
+    p.add("contact_masks", contact_masks_, ContactMasks::RestPair,
+          {{"rest_pair", ContactMasks::RestPair}, {"dataset", ContactMasks::Dataset}})
+        .doc("the semantic loss's contact masks: contact_mask's algorithm on each pair against the rest pair "
+             "(rest_pair: no labels, as the paper's masks come from a network, not from ground truth), or each "
+             "row's contact_mask file (dataset: masks labelled by hand; a row without one is refused)");
+    p.add("contact_threshold_grey", contact_.threshold_grey, 12.0).above(0).below(255).unit("grey levels")
+        .doc("contact_mask's threshold_grey for the masks computed against the rest pair (12: the best agreement "
+             "with the simulator's true masks on gs_depthnet_dataset.yaml's noisy presses, mean IoU 0.65)");
     p.add("checkpoint", checkpoint_, std::string("gs_depthnet.ckpt")).output_file().doc("checkpoint file written");
     p.add("curve_csv", curve_csv_, std::string("training_curve.csv")).output_file().doc("loss terms and metrics per epoch");
     p.add("curve_png", curve_png_, std::string("training_curve.png")).output_file().doc("plot of the training curve");
     p.add("resume_from", resume_from_).input_file()
         .doc("checkpoint to continue from (weights, optimiser state, epochs done); must be of the same network");
     p.add("threads", threads_, 2).range(1, 256).doc("libtorch's intra-op threads");
+    p.add("crop_rows", crop_rows_).range(32, 4096).unit("px")
+        .doc("train each batch on a band of this many rows at a random offset (a multiple of 32; the network is "
+             "convolutional and sees whole images in validation and inference): a step costs about crop_rows / "
+             "height of one on whole pairs. Not set: whole pairs");
+    p.rule({"crop_rows"}, [this]() -> std::optional<std::string> {
+      if (crop_rows_ && *crop_rows_ % 32) return "is " + std::to_string(*crop_rows_) + ", not a multiple of 32";
+      return std::nullopt;
+    });
   }
 
   void declare_ports(PortSet&) override {}
 
-  void on_check(RunContext&) override {
+  void on_check(RunContext& ctx) override {
     for (const auto& [param, file] : {std::pair<std::string, std::optional<std::string>>{"index", index_},
                                       {"extra_index", extra_index_}}) {
       if (!file) continue;
@@ -115,7 +142,6 @@ class GsDepthNetTrain final : public Stage {
         throw ParameterError(param, *file + ": pairs of " + std::to_string(shape_.input_width_px) + " x " +
                                         std::to_string(shape_.input_height_px) +
                                         " px; GS-DepthNet needs both sides multiples of 32");
-      add_contact_masks(set, param);
       for (auto& s : set.samples) samples_.push_back(std::move(s));
     }
     if (resume_from_) {
@@ -126,37 +152,94 @@ class GsDepthNetTrain final : public Stage {
         throw ParameterError("resume_from", e.what());
       }
     }
+    reference_matcher_.method = stereo_disparity::MatchMethod::SemiGlobal;
+    reference_matcher_.full_width = true;  // the gel reaches the image's first columns
+    reference_matcher_.validate();
+    if (!resume_ && !rest_index_)
+      throw ParameterError("rest_index", "is not set: the network's zero is the gel at rest, measured from a pair "
+                                         "of it (or continue a checkpoint: resume_from)");
+    if (crop_rows_ && *crop_rows_ > shape_.input_height_px)
+      throw ParameterError("crop_rows", std::to_string(*crop_rows_) + " rows; the pairs have " +
+                                            std::to_string(shape_.input_height_px));
+    if (rest_index_) rest_pair_ = read_rest_pair();
+    add_contact_masks(ctx);
   }
 
-  // Every sample gets a contact mask: its own, or one against reference_row.
-  void add_contact_masks(lrn::StereoSamples& set, const std::string& param) {
-    const lrn::StereoSample* reference = nullptr;
-    if (reference_row_) {
-      for (const auto& s : set.samples)
-        if (s.index == *reference_row_) reference = &s;
-      if (!reference)
-        throw ParameterError("reference_row", set.index_file.string() + " has no row with index " +
-                                                  std::to_string(*reference_row_));
+  // rest_index's first pair, at the training pairs' size.
+  lrn::StereoSample read_rest_pair() const {
+    lrn::StereoSamples rest;
+    try {
+      rest = lrn::read_stereo_samples(*rest_index_);
+    } catch (const InputError& e) {
+      throw ParameterError("rest_index", e.what());
     }
-    std::vector<cv::Mat> computed(set.samples.size());
-    for (std::size_t i = 0; i < set.samples.size(); ++i) {
-      auto& s = set.samples[i];
-      if (!s.contact_mask.empty()) continue;
-      if (!weights_.semantic) continue;
-      if (!reference)
-        throw ParameterError(param, s.where + ": no contact_mask file, and reference_row is not set (the "
-                                                  "semantic loss needs a contact mask per pair)");
-      computed[i] = contact_mask::contact_region(s.left, reference->left, contact_);
+    lrn::StereoSample pair = std::move(rest.samples.front());
+    if (pair.left.cols != shape_.input_width_px || pair.left.rows != shape_.input_height_px)
+      throw ParameterError("rest_index", pair.where + ": a pair of " + std::to_string(pair.left.cols) + " x " +
+                                             std::to_string(pair.left.rows) + " px; the training pairs are " +
+                                             std::to_string(shape_.input_width_px) + " x " +
+                                             std::to_string(shape_.input_height_px));
+    return pair;
+  }
+
+  // The gel at rest: SGBM's left and right disparities of the rest pair
+  // (rest_index's first row), filtered and filled. No ground truth.
+  lrn::ReferenceDisparity measure_reference(RunContext& ctx) const {
+    const lrn::StereoSample& pair = *rest_pair_;
+    const auto d = stereo_disparity::DisparityMatcher(reference_matcher_).match(pair.left, pair.right, pair.where);
+    auto r = lrn::reference_from_rest(d.left_px, d.valid_left, d.right_px, d.valid_right, pair.where);
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(r.left_px, &lo, &hi, nullptr, nullptr, r.gel_left);
+    ctx.log("rest disparity (SGBM of " + pair.where + "): " + number_text(std::round(lo * 10) / 10) + " to " +
+            number_text(std::round(hi * 10) / 10) + " px over the left view's gel, " +
+            std::to_string(cv::countNonZero(r.gel_left)) + " px");
+    return r;
+  }
+
+  // Every sample's contact mask for the semantic loss: contact_mask's
+  // algorithm against the rest pair's left view, or the row's own file.
+  void add_contact_masks(RunContext& ctx) {
+    if (!weights_.semantic) return;
+    double lo = 100, hi = 0, iou_sum = 0;
+    int labelled = 0;
+    for (auto& s : samples_) {
+      if (contact_masks_ == ContactMasks::Dataset) {
+        if (s.contact_mask.empty())
+          throw ParameterError("contact_masks", s.where + ": no contact_mask file (contact_masks: dataset takes "
+                                                          "each row's; rest_pair computes them)");
+        continue;
+      }
+      if (!rest_pair_)
+        throw ParameterError("contact_masks", "rest_pair needs rest_index (a resumed training reads no rest pair): "
+                                              "set rest_index, or contact_masks: dataset");
+      const cv::Mat mask = contact_mask::contact_region(s.left, rest_pair_->left, contact_);
+      const double share = 100.0 * cv::countNonZero(mask) / static_cast<double>(mask.total());
+      lo = std::min(lo, share), hi = std::max(hi, share);
+      if (!s.contact_mask.empty()) {  // a row's own mask (a label, or the simulator's truth): how they agree
+        const double both = cv::countNonZero(mask & s.contact_mask), either = cv::countNonZero(mask | s.contact_mask);
+        iou_sum += either > 0 ? both / either : 1.0;
+        ++labelled;
+      }
+      s.contact_mask = mask;
     }
-    for (std::size_t i = 0; i < set.samples.size(); ++i)
-      if (!computed[i].empty()) set.samples[i].contact_mask = computed[i];
+    if (contact_masks_ != ContactMasks::RestPair || samples_.empty()) return;
+    std::string line = "contact masks against the rest pair: " + std::to_string(samples_.size()) + " pairs, " +
+                       number_text(std::round(lo)) + " to " + number_text(std::round(hi)) + " % of the pixels";
+    if (labelled > 0)
+      line += "; IoU with the rows' own contact_mask files " + number_text(std::round(iou_sum / labelled * 100) / 100) +
+              " (mean of " + std::to_string(labelled) + ")";
+    ctx.log(line);
   }
 
   void on_process(StageIO&, RunContext& ctx) override {
     torch::set_num_threads(threads_);
+    lrn::keep_freed_memory_for_reuse();  // a pass's activations are not faulted in again
     ctx.used("threads", static_cast<std::int64_t>(torch::get_num_threads()));
     torch::manual_seed(ctx.rng()());
-    lrn::GsDepthNet net(shape_);
+    const lrn::ReferenceDisparity reference =
+        resume_ ? lrn::ReferenceDisparity::parse(resume_->blob("rest_disparity", *resume_from_), *resume_from_)
+                : measure_reference(ctx);
+    lrn::GsDepthNet net(shape_, reference);
     torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(schedule_.initial)
                                                    .betas({betas_[0], betas_[1]})
                                                    .eps(epsilon_));
@@ -196,10 +279,20 @@ class GsDepthNetTrain final : public Stage {
       double sums[5] = {0, 0, 0, 0, 0};
       for (const auto& batch : lrn::shuffled_batches(n, batch_size_, ctx.rng())) {
         const torch::Tensor rows = torch::tensor(batch, torch::kLong);
-        const torch::Tensor l = left_all.index_select(0, rows), r = right_all.index_select(0, rows);
-        const torch::Tensor m = contact_all.index_select(0, rows);
+        torch::Tensor l = left_all.index_select(0, rows), r = right_all.index_select(0, rows);
+        torch::Tensor m = contact_all.index_select(0, rows);
+        std::int64_t row0 = 0, height = shape_.input_height_px;
+        if (crop_rows_) {
+          height = *crop_rows_;
+          const int bands = (shape_.input_height_px - *crop_rows_) / 32;
+          row0 = 32 * std::uniform_int_distribution<int>(0, bands)(ctx.rng());
+          l = l.narrow(2, row0, height);
+          r = r.narrow(2, row0, height);
+          m = m.narrow(2, row0, height);
+        }
         adam.zero_grad();
-        const auto terms = lrn::gs_depthnet_loss(net->forward(l, r), l, r, m, weights_, shape_.min_disparity_px);
+        const auto terms = lrn::gs_depthnet_loss(net->forward(l, r, row0), l, r, m, weights_,
+                                                 net->gel_mask(false, row0, height), net->gel_mask(true, row0, height));
         terms.total.backward();
         adam.step();
         const double share = static_cast<double>(batch.size()) / static_cast<double>(n);
@@ -234,7 +327,9 @@ class GsDepthNetTrain final : public Stage {
                                  weights_.appearance_resolution == lrn::AppearanceResolution::Input ? "input" : "scale"}};
     if (!records.empty())
       for (const auto& [name, v] : records.back().values) c.header.training_fields.emplace_back(name, number_text(v));
-    c.blobs = {{"weights", lrn::module_bytes(*net)}, {"optimizer", lrn::optimizer_bytes(adam)}};
+    c.blobs = {{"weights", lrn::module_bytes(*net)},
+               {"optimizer", lrn::optimizer_bytes(adam)},
+               {"rest_disparity", reference.bytes()}};
     write_file(ctx.output_path(checkpoint_), lrn::checkpoint_bytes(c));
     write_file(ctx.output_path(curve_csv_), lrn::curve_csv(records));
     write_file(ctx.output_path(curve_png_),

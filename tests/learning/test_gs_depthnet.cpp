@@ -3,6 +3,8 @@
 // schedule and batches, and the checkpoint file's refusals.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "test_support.hpp"
 #include "tiny_stereo_dataset.hpp"
 #include "touchcloud/error.hpp"
@@ -21,16 +23,24 @@ GsDepthNetShape tiny_shape(int width = 2) {
   GsDepthNetShape s;
   s.width = width;
   s.input_width_px = s.input_height_px = 64;
-  s.d_max_px = 8;
-  s.min_disparity_px = 1;
+  s.d_max_px = 4;
+  s.min_disparity_px = -1;
   return s;
+}
+// The tiny dataset's gel at rest: 3 px everywhere, in both views (or as a
+// matcher might have measured it, `px`).
+ReferenceDisparity tiny_reference(float px = 3) {
+  ReferenceDisparity r;
+  r.left_px = r.right_px = cv::Mat(64, 64, CV_32FC1, cv::Scalar(px));
+  r.gel_left = r.gel_right = cv::Mat(64, 64, CV_8UC1, cv::Scalar(255));
+  return r;
 }
 }  // namespace
 
 TEST(GsDepthNet, LayerTableGivesTheNetworksParametersAndOutputSizes) {
   for (int width : {2, 8}) {
     const GsDepthNetShape shape = tiny_shape(width);
-    GsDepthNet net(shape);
+    GsDepthNet net(shape, tiny_reference());
     std::int64_t counted = 0;
     for (const auto& p : net->parameters()) counted += p.numel();
     EXPECT_EQ(counted, gs_depthnet_parameters(shape)) << "width " << width;
@@ -40,9 +50,12 @@ TEST(GsDepthNet, LayerTableGivesTheNetworksParametersAndOutputSizes) {
     for (int k = 0; k < 4; ++k) {
       EXPECT_EQ(scales[k].left.size(3), 64 >> (3 - k));  // 8, 16, 32, 64: each double the previous
       EXPECT_EQ(scales[k].right.sizes(), scales[k].left.sizes());
-      // Bounded: offset + d_max * sigmoid.
-      EXPECT_GE(scales[k].left.min().item<double>(), 1.0);
-      EXPECT_LE(scales[k].left.max().item<double>(), 9.0);
+      // Bounded: the rest disparity + offset + d_max * sigmoid, in both views.
+      for (const auto* d : {&scales[k].left, &scales[k].right}) {
+        EXPECT_GE(d->min().item<double>(), 2.0);
+        EXPECT_LE(d->max().item<double>(), 6.0);
+      }
+      EXPECT_TRUE(torch::allclose(scales[k].left - 3, scales[k].left_relative, 0, 1e-5));
     }
   }
   // FLOPs by hand for width 1 at 32 x 32: each layer 2 * 9 * cin * cout * h * w.
@@ -50,40 +63,81 @@ TEST(GsDepthNet, LayerTableGivesTheNetworksParametersAndOutputSizes) {
   one.input_width_px = one.input_height_px = 32;
   double expected = 0;
   for (const auto& l : gs_depthnet_layers(one)) expected += 2.0 * 9 * l.in_channels * l.out_channels * l.out_height * l.out_width;
-  EXPECT_EQ(gs_depthnet_flops(one), expected);
-  // The first layer: 6 -> 1 channels at 16 x 16: 2 * 9 * 6 * 256 = 27648.
+  EXPECT_EQ(gs_depthnet_flops(one), 2 * expected);  // a pass per view
+  // The first layer takes the pair's 6 channels and one matching cost per
+  // whole-pixel shift of -1 + [0, 4] px (-1, 0, 1, 2, 3): 11 -> 1 channels at 16 x 16.
+  EXPECT_EQ(one.cost_shifts(), (std::vector<int>{-1, 0, 1, 2, 3}));
+  EXPECT_EQ(gs_depthnet_layers(one).front().in_channels, 11);
   EXPECT_EQ(gs_depthnet_layers(one).front().out_height, 16);
-  EXPECT_EQ(2.0 * 9 * 6 * 1 * 16 * 16, 27648.0);
 }
 
+// The matching costs: where the other view shows the view's content s
+// columns to the left, the cost at shift s is 0 and the others are not.
+TEST(GsDepthNet, MatchingCostsVanishAtTheShiftThatAlignsTheViews) {
+  torch::manual_seed(5);
+  const torch::Tensor texture = torch::rand({1, 3, 8, 40});
+  using torch::indexing::Slice;
+  const torch::Tensor view = texture.index({Slice(), Slice(), Slice(), Slice(4, 36)});
+  const torch::Tensor other = texture.index({Slice(), Slice(), Slice(), Slice(6, 38)});  // other(x - 2) = view(x)
+  const torch::Tensor costs = matching_costs(view, other, {-1, 0, 1, 2, 3});
+  ASSERT_EQ(costs.sizes(), (std::vector<std::int64_t>{1, 5, 8, 32}));
+  const auto inner = [&](int k) { return costs.index({0, k, Slice(), Slice(4, 28)}); };
+  EXPECT_LT(inner(3).abs().max().item<double>(), 1e-6);  // shift 2
+  for (int k : {0, 1, 2, 4}) EXPECT_GT(inner(k).min().item<double>(), 0.05) << "shift " << k - 1;
+  // Each cost is the 3 x 3 box average (edges replicated) of the per-pixel
+  // mean absolute colour difference, as libtorch's avg_pool2d gives it.
+  namespace F = torch::nn::functional;
+  const torch::Tensor padded = F::pad(other, F::PadFuncOptions({3, 3, 0, 0}).mode(torch::kReplicate));
+  const torch::Tensor raw = (view - padded.narrow(3, 3 - 2, 32)).abs().mean(1, true);
+  const torch::Tensor box = F::avg_pool2d(F::pad(raw, F::PadFuncOptions({1, 1, 1, 1}).mode(torch::kReplicate)),
+                                          F::AvgPool2dFuncOptions(3).stride(1));
+  EXPECT_LT((costs.narrow(1, 3, 1) - box).abs().max().item<double>(), 1e-6);
+}
+
+// The rest disparity is measured 1 px short (2 px for the true 3): the
+// untrained network is 1 px off everywhere, and a few steps of the
+// self-supervised losses alone bring it toward the truth.
 TEST(GsDepthNet, AFewTrainingStepsOnATinySeededDatasetReduceTheLoss) {
   TempDir dir;
   const StereoSamples set = read_stereo_samples(tiny::write(dir.path() / "data", 4, 64));
-  std::vector<cv::Mat> lefts, rights, masks;
-  for (const auto& s : set.samples) lefts.push_back(s.left), rights.push_back(s.right), masks.push_back(s.contact_mask);
+  std::vector<cv::Mat> lefts, rights, masks, truths;
+  for (const auto& s : set.samples)
+    lefts.push_back(s.left), rights.push_back(s.right), masks.push_back(s.contact_mask),
+        truths.push_back(s.disparity_left_px);
   const torch::Tensor l = image_batch(lefts), r = image_batch(rights), m = image_batch(masks).gt(0.5).to(torch::kFloat32);
+  const torch::Tensor truth = image_batch(truths);
   torch::manual_seed(1);
   const GsDepthNetShape shape = tiny_shape(4);
-  GsDepthNet net(shape);
+  GsDepthNet net(shape, tiny_reference(2));
   torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(1e-3));
   const LossWeights weights;
+  auto error_px = [&] {  // mean |left disparity - truth| away from the image's sides
+    torch::NoGradGuard no_grad;
+    using torch::indexing::Slice;
+    const torch::Tensor d = net->forward(l, r).back().left;
+    return (d - truth).abs().index({Slice(), Slice(), Slice(), Slice(8, 56)}).mean().item<double>();
+  };
+  const double error_before = error_px();
   double first = 0, last = 0;
   for (int step = 0; step < 30; ++step) {
     adam.zero_grad();
-    const auto terms = gs_depthnet_loss(net->forward(l, r), l, r, m, weights, shape.min_disparity_px);
+    const auto terms = gs_depthnet_loss(net->forward(l, r), l, r, m, weights);
     terms.total.backward();
     adam.step();
     (step == 0 ? first : last) = terms.total.item<double>();
     ASSERT_TRUE(std::isfinite(terms.total.item<double>()));
   }
+  const double error_after = error_px();
+  std::cout << "loss " << first << " -> " << last << ", error " << error_before << " -> " << error_after << " px\n";
   EXPECT_LT(last, 0.8 * first) << "first " << first << ", last " << last;
+  EXPECT_LT(error_after, 0.6 * error_before) << "error " << error_before << " -> " << error_after << " px";
 }
 
 TEST(GsDepthNet, CheckpointRoundTripGivesTheSameDisparitiesBitForBit) {
   TempDir dir;
   torch::manual_seed(3);
   const GsDepthNetShape shape = tiny_shape(3);
-  GsDepthNet net(shape);
+  GsDepthNet net(shape, tiny_reference());
   Checkpoint c;
   c.header = shape.header();
   c.header.training_fields = {{"epochs_done", "0"}};
@@ -94,7 +148,7 @@ TEST(GsDepthNet, CheckpointRoundTripGivesTheSameDisparitiesBitForBit) {
   EXPECT_EQ(back.header.describe(), c.header.describe());
   const GsDepthNetShape shape_back = GsDepthNetShape::from_header(back.header, "net.ckpt");
   torch::manual_seed(99);  // other initial weights: the loaded ones must replace them
-  GsDepthNet loaded(shape_back);
+  GsDepthNet loaded(shape_back, tiny_reference());
   load_module_bytes(*loaded, back.blob("weights", "net.ckpt"), "net.ckpt");
   net->eval();
   loaded->eval();
@@ -119,7 +173,7 @@ TEST(Checkpoint, RefusesMissingCorruptAndOtherNetworksNamingTheFile) {
   // Truncated weights.
   Checkpoint c;
   c.header = tiny_shape().header();
-  GsDepthNet net(tiny_shape());
+  GsDepthNet net(tiny_shape(), tiny_reference());
   c.blobs = {{"weights", module_bytes(*net)}};
   const std::string bytes = checkpoint_bytes(c);
   write_file(dir.path() / "cut.ckpt", bytes.substr(0, bytes.size() / 2));

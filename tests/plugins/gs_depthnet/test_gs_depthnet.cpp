@@ -38,9 +38,11 @@ class GsDepthNetStage : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new TempDir();
     tiny::write(dir_->path() / "data", 4, 64);
+    tiny::write_rest(dir_->path() / "rest", 64);
     write_file(dir_->path() / "train.yaml",
                "pipeline: t\nstages:\n  - id: train\n    plugin: gs_depthnet_train\n"
-               "    params: {index: data/index.csv, epochs: 1, batch_size: 4, width: 2, d_max_px: 8, min_disparity_px: 1}\n");
+               "    params: {index: data/index.csv, rest_index: rest/index.csv, reference_num_disparities: 16, epochs: 1,"
+               " batch_size: 4, width: 2, d_max_px: 8, min_disparity_px: -1}\n");
     const auto r = run_cli({"run", (dir_->path() / "train.yaml").string(), "--out", (dir_->path() / "trained").string(),
                             "--seed", "1"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -84,8 +86,9 @@ TEST_F(GsDepthNetStage, GivesBoundedLeftAndRightDisparitiesTheSameBitsFromEveryL
     EXPECT_EQ(cv::countNonZero(maps->valid_right), 64 * 64);
     double lo = 0, hi = 0;
     cv::minMaxLoc(maps->disparity_left_px, &lo, &hi);
-    EXPECT_GE(lo, 1.0);  // min_disparity_px
-    EXPECT_LE(hi, 9.0);  // + d_max_px
+    // The tiny rig's gel rests at 3 px: 3 + min_disparity_px .. + d_max_px.
+    EXPECT_GE(lo, 2.0 - 0.1);
+    EXPECT_LE(hi, 10.0 + 0.1);
     EXPECT_EQ(maps->camera.width_px, 64);
     if (load == 0) first_left = maps->disparity_left_px.clone();
     else EXPECT_EQ(cv::norm(first_left, maps->disparity_left_px, cv::NORM_INF), 0.0);

@@ -19,13 +19,17 @@ std::string pipeline(const std::string& extra = "") {
          "stages:\n"
          "  - id: train\n"
          "    plugin: gs_depthnet_train\n"
-         "    params: {index: data/index.csv, epochs: 2, batch_size: 2, width: 2, d_max_px: 8, min_disparity_px: 1,"
+         "    params: {index: data/index.csv, rest_index: rest/index.csv, reference_num_disparities: 16, epochs: 2,"
+         " batch_size: 2, width: 2, d_max_px: 8, min_disparity_px: -1,"
          " constant_epochs: 1, halve_every: 1" + extra + "}\n";
 }
 
 class TrainTiny : public ::testing::Test {
  protected:
-  TrainTiny() { tiny::write(dir_.path() / "data", 2, 32); }
+  TrainTiny() {
+    tiny::write(dir_.path() / "data", 2, 32);
+    tiny::write_rest(dir_.path() / "rest", 32);
+  }
   CliResult run(const std::string& yaml, const std::string& out, const std::vector<std::string>& more = {}) {
     write_file(dir_.path() / "p.yaml", yaml);
     std::vector<std::string> args{"run", (dir_.path() / "p.yaml").string(), "--out", (dir_.path() / out).string(),
@@ -46,7 +50,9 @@ TEST_F(TrainTiny, WritesTheCheckpointAndCurveTheSameForTheSameSeedAndResumes) {
   ASSERT_EQ(a.exit_code, 0) << a.err;
   const std::string ckpt = read_file(dir_.path() / "a" / "gs_depthnet.ckpt");
   EXPECT_EQ(ckpt.rfind("touchcloud checkpoint 1\narchitecture gs_depthnet\n", 0), 0u);
-  EXPECT_NE(ckpt.find("input 32 32 6\narch width 2\narch d_max_px 8\narch min_disparity_px 1\n"), std::string::npos);
+  EXPECT_NE(ckpt.find("input 32 32 6\narch width 2\narch d_max_px 8\narch min_disparity_px -1\narch matching_costs 9\n"),
+            std::string::npos);
+  EXPECT_NE(ckpt.find("\nblob rest_disparity "), std::string::npos);  // the network's zero travels with it
   const std::string csv = read_file(dir_.path() / "a" / "training_curve.csv");
   EXPECT_EQ(csv.rfind("epoch,learning_rate,seconds,loss,appearance,smoothness,lr_consistency,semantic,val_epe_px", 0), 0u) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);  // header + 2 epochs
@@ -105,6 +111,25 @@ TEST_F(TrainTiny, AnEmptyDatasetFolderIsRefusedNamingItsIndexAndNothingIsWritten
   EXPECT_TRUE(nothing_in("out"));
 }
 
+TEST_F(TrainTiny, WithoutARestPairOrWithOneOfAnotherSizeNothingIsTrained) {
+  const auto none = run(pipeline(), "out", {"--set", "train.rest_index="});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_TRUE(nothing_in("out"));
+  std::string yaml = pipeline();
+  yaml.replace(yaml.find("rest_index: rest/index.csv, "), 28, "");
+  const auto unset = run(yaml, "out");
+  EXPECT_EQ(unset.exit_code, 2) << unset.err;
+  EXPECT_NE(unset.err.find("rest_index"), std::string::npos) << unset.err;
+  EXPECT_NE(unset.err.find("the gel at rest"), std::string::npos) << unset.err;
+  EXPECT_TRUE(nothing_in("out"));
+  tiny::write_rest(dir_.path() / "rest64", 64);
+  const auto big = run(pipeline(), "out", {"--set", "train.rest_index=" + (dir_.path() / "rest64" / "index.csv").string()});
+  EXPECT_EQ(big.exit_code, 2) << big.err;
+  EXPECT_NE(big.err.find("rest64/index.csv:2: a pair of 64 x 64 px; the training pairs are 32 x 32"), std::string::npos)
+      << big.err;
+  EXPECT_TRUE(nothing_in("out"));
+}
+
 TEST_F(TrainTiny, ResumingFromAnotherNetworkIsRefusedNamingBoth) {
   ASSERT_EQ(run(pipeline(), "a").exit_code, 0);
   const auto r = run(pipeline(), "out", {"--set", "train.width=3", "--set",
@@ -116,19 +141,30 @@ TEST_F(TrainTiny, ResumingFromAnotherNetworkIsRefusedNamingBoth) {
   EXPECT_TRUE(nothing_in("out"));
 }
 
-TEST_F(TrainTiny, PairsWithoutContactMasksNeedTheReferenceRow) {
+TEST_F(TrainTiny, ContactMasksComeFromTheRestPairOrFromTheDatasetsOwnFiles) {
   tiny::write(dir_.path() / "bare", 2, 32, /*with_masks=*/false);
   const std::string index = "train.index=" + (dir_.path() / "bare" / "index.csv").string();
-  const auto r = run(pipeline(), "out", {"--set", index, "--set", "train.epochs=1"});
+  // By default the masks are contact_mask's, against the rest pair: no labels needed.
+  const auto computed = run(pipeline(), "computed", {"--set", index, "--set", "train.epochs=1"});
+  EXPECT_EQ(computed.exit_code, 0) << computed.err;
+  EXPECT_NE(computed.err.find("contact masks against the rest pair: 2 pairs, "),
+            std::string::npos) << computed.err;
+  // contact_masks: dataset takes each row's file, and refuses a row without one.
+  const auto r = run(pipeline(", contact_masks: dataset"), "out", {"--set", index, "--set", "train.epochs=1"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("bare/index.csv:2: no contact_mask file, and reference_row is not set"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bare/index.csv:2: no contact_mask file (contact_masks: dataset takes each row's"),
+            std::string::npos) << r.err;
   EXPECT_TRUE(nothing_in("out"));
-  const auto bad_row = run(pipeline(", reference_row: 7"), "out", {"--set", index, "--set", "train.epochs=1"});
-  EXPECT_EQ(bad_row.exit_code, 2) << bad_row.err;
-  EXPECT_NE(bad_row.err.find("has no row with index 7"), std::string::npos) << bad_row.err;
-  const auto ok = run(pipeline(", reference_row: 0"), "ok", {"--set", index, "--set", "train.epochs=1"});
-  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  const auto labelled = run(pipeline(", contact_masks: dataset"), "labelled", {"--set", "train.epochs=1"});
+  EXPECT_EQ(labelled.exit_code, 0) << labelled.err;
+  // Where rows list masks, the rest pair's masks are compared with them: the
+  // tiny presses' squares are found.
+  const auto compared = run(pipeline(), "compared", {"--set", "train.epochs=1"});
+  EXPECT_EQ(compared.exit_code, 0) << compared.err;
+  const auto at = compared.err.find("IoU with the rows' own contact_mask files ");
+  ASSERT_NE(at, std::string::npos) << compared.err;
+  EXPECT_GT(std::stod(compared.err.substr(at + 42)), 0.6) << compared.err;
   // Without the semantic term no mask is needed.
-  const auto no_se = run(pipeline(", se_loss: false"), "no_se", {"--set", index, "--set", "train.epochs=1"});
+  const auto no_se = run(pipeline(", se_loss: false, contact_masks: dataset"), "no_se", {"--set", index, "--set", "train.epochs=1"});
   EXPECT_EQ(no_se.exit_code, 0) << no_se.err;
 }

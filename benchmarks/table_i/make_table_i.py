@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Regenerates Table I and Table II of the colour-pattern GelStereo paper
 (seed 000) in simulation, for the classical matchers (OpenCV's BM and SGBM
-at the paper's block sizes 7, 15, 21, 33). Writes, into --out:
+at the paper's block sizes 7, 15, 21, 33) and for GS-DepthNet (Ours, Ours
+no LR, Ours no SE: three checkpoints, each trained by
+pipelines/gs_depthnet_train.yaml with one loss term switched off).
+Writes, into --out:
 
   table_i.md     both tables in the paper's layout, the paper's values beside
   table_i.csv    Table I: one row per matcher, all pixels and contact region
@@ -17,8 +20,17 @@ depth differences) uses the matcher with the lowest contact-region RMSE,
 and the true disparity beside it, through the paper's Q reprojection and
 through the plate's refraction.
 
+The networks: --train trains the three from pipelines/gs_depthnet_dataset.yaml's
+simulated presses (the objects of the test set are not among them) into
+--networks (default OUT/networks: ours.ckpt, no_lr.ckpt, no_se.ckpt and
+their training curves); without --train the checkpoints already in
+--networks are evaluated, and the network rows are left out when there are
+none.
+
 Usage (from the repository root, after building):
-  benchmarks/table_i/make_table_i.py --out benchmarks/table_i [--work DIR] [--jobs 2]
+  benchmarks/table_i/make_table_i.py --out benchmarks/table_i --train        # trains: about an hour on 2 cores
+  benchmarks/table_i/make_table_i.py --out benchmarks/table_i                # evaluates the committed networks
+  [--work DIR] [--jobs 2] [--networks DIR]
 """
 import argparse
 import concurrent.futures
@@ -58,6 +70,14 @@ PAPER_TABLE_I = {
     "SGBM (block_size, 21)": [1.312, 9.571, 2.974, 14.247, 0.637, 0.642, 0.643],
     "SGBM (block_size, 33)": [0.615, 2.822, 1.627, 11.467, 0.759, 0.762, 0.763],
 }
+# The network rows: label, checkpoint file in --networks, the training's loss switches.
+NETWORKS = [("Ours", "ours", []), ("Ours no LR", "no_lr", ["train.lr_loss=false"]),
+            ("Ours no SE", "no_se", ["train.se_loss=false"])]
+PAPER_TABLE_I.update({
+    "Ours no LR": [0.275, 0.975, 0.956, 3.098, 0.896, 0.918, 0.928],
+    "Ours no SE": [1.264, 5.786, 1.872, 9.573, 0.635, 0.718, 0.746],
+    "Ours": [0.243, 0.769, 0.815, 2.157, 0.926, 0.937, 0.942],
+})
 DIFFERENCES = [(1.5, 0.5), (1.5, 1.0), (1.0, 0.5)]
 # Table II: mean and sd (mm) for 1.5-0.5, 1.5-1.0, 1.0-0.5, All.
 PAPER_TABLE_II = {
@@ -122,13 +142,42 @@ def metric(summary, name):
     return m["value"] if "value" in m else m["values"][-1]
 
 
-def evaluate(work, presses, label, method, block):
-    out = os.path.join(work, "eval", f"{method}_{block}")
+def train_networks(work, networks):
+    """The dataset (once), then one training per network row; returns {file: seconds}."""
+    dataset = os.path.join(work, "gs_depthnet_dataset")
+    if not os.path.exists(os.path.join(dataset, "summary.json")):
+        run_cli(["run", os.path.join(ROOT, "pipelines/gs_depthnet_dataset.yaml"), "--seed", "1", "--out", dataset,
+                 "--quiet"])
+    os.makedirs(networks, exist_ok=True)
+    seconds = {}
+    for label, name, switches in NETWORKS:
+        out = os.path.join(work, "train", name)
+        shutil.rmtree(out, ignore_errors=True)
+        start = time.time()
+        args = ["run", os.path.join(ROOT, "pipelines/gs_depthnet_train.yaml"), "--seed", "1", "--out", out, "--quiet",
+                "--set", f"train.index={dataset}/fox/index.csv",
+                "--set", f"train.extra_index={dataset}/wave/index.csv",
+                "--set", f"train.rest_index={dataset}/rest/index.csv"]
+        for s in switches:
+            args += ["--set", s]
+        run_cli(args)
+        seconds[name] = time.time() - start
+        shutil.copy(os.path.join(out, "gs_depthnet.ckpt"), os.path.join(networks, f"{name}.ckpt"))
+        for curve in ("training_curve.csv", "training_curve.png"):
+            shutil.copy(os.path.join(out, curve), os.path.join(networks, f"{name}_{curve}"))
+        print(f"make_table_i: trained {label} in {seconds[name]:.0f} s", flush=True)
+    return seconds
+
+
+def evaluate(work, presses, label, method, block, checkpoint=None):
+    out = os.path.join(work, "eval", os.path.basename(checkpoint) if checkpoint else f"{method}_{block}")
     shutil.rmtree(out, ignore_errors=True)
-    run_cli(["run", os.path.join(ROOT, "benchmarks/table_i/evaluate.yaml"), "--out", out, "--quiet",
+    pipeline = "evaluate_net.yaml" if checkpoint else "evaluate.yaml"
+    method_args = (["--set", f"disparity.checkpoint={checkpoint}"] if checkpoint else
+                   ["--set", f"disparity.method={method}", "--set", f"disparity.block_size_px={block}"])
+    run_cli(["run", os.path.join(ROOT, "benchmarks/table_i", pipeline), "--out", out, "--quiet",
              "--set", f"pairs.index={os.path.join(work, 'index.csv')}",
-             "--set", f"pairs_loop.max_iterations={len(presses)}",
-             "--set", f"disparity.method={method}", "--set", f"disparity.block_size_px={block}"])
+             "--set", f"pairs_loop.max_iterations={len(presses)}"] + method_args)
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     row = {"method": label}
@@ -175,7 +224,7 @@ def mean_sd(values):
     return statistics.fmean(values), (statistics.stdev(values) if len(values) > 1 else 0.0)
 
 
-def write_outputs(out, rows, best, ii, presses, seconds):
+def write_outputs(out, rows, best, ii, presses, seconds, trained):
     with open(os.path.join(out, "table_i.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -202,7 +251,9 @@ def write_outputs(out, rows, best, ii, presses, seconds):
     lines = ["# Table I and II of the colour-pattern GelStereo (seed 000), simulated", "",
              f"Regenerated by `benchmarks/table_i/make_table_i.py --out benchmarks/table_i` "
              f"({len(presses)} presses: {len(SHAPES)} indenters x {len(DEPTHS_MM)} depths x {len(GEL_AREAS_MM)} "
-             f"gel areas, 256 x 256; {seconds:.0f} s). See README.md here for what differs from the paper.", "",
+             f"gel areas, 256 x 256; {seconds:.0f} s" +
+             ("; trained " + ", ".join(f"{n} in {s / 60:.0f} min" for n, s in trained.items()) if trained else "") +
+             "). See README.md here for what differs from the paper.", "",
              "## Table I: disparity errors, contact region (ours) and the paper's", "",
              "| Method | " + " | ".join(HEADERS) + " | coverage |",
              "|---|" + "---|" * (len(HEADERS) + 1)]
@@ -218,7 +269,8 @@ def write_outputs(out, rows, best, ii, presses, seconds):
         lines.append(f"| {r['method']} | " + " | ".join(fmt(r[f'{m}_all']) for m in METRICS) +
                      f" | {r['coverage_all']:.3f} |")
     lines += ["", f"## Table II: measured minus commanded depth difference (mm), mean / sd", "",
-              f"Disparity from {best} (lowest contact RMSE) and from the truth; the contact region's median "
+              f"Disparity from {best} (the classical matcher of lowest contact RMSE), from GS-DepthNet (Ours) "
+              "where it was evaluated, and from the truth; the contact region's median "
               "height, by the paper's Q reprojection and by rays traced through the plate.", "",
               "| disparity | conversion | workpiece | " + " | ".join(columns) + " |",
               "|---|---|---|" + "---|" * len(columns)]
@@ -239,6 +291,9 @@ def main():
     ap.add_argument("--out", required=True, help="folder for the tables")
     ap.add_argument("--work", default=None, help="folder for the test set and runs (default: OUT/work, removed)")
     ap.add_argument("--jobs", type=int, default=2, help="presses simulated at once")
+    ap.add_argument("--networks", default=None,
+                    help="folder of the network rows' checkpoints (default OUT/networks)")
+    ap.add_argument("--train", action="store_true", help="train the three networks into --networks first")
     args = ap.parse_args()
     if not os.access(CLI, os.X_OK):
         sys.exit(f"make_table_i: {CLI} not found: build first (scripts/build.sh)")
@@ -246,6 +301,8 @@ def main():
     work = os.path.abspath(args.work or os.path.join(args.out, "work"))
     os.makedirs(work, exist_ok=True)
     start = time.time()
+    networks = os.path.abspath(args.networks or os.path.join(args.out, "networks"))
+    trained = train_networks(work, networks) if args.train else {}
     presses = make_test_set(work, args.jobs)
     rows, folders = [], {}
     for label, method, block in MATCHERS:
@@ -253,11 +310,18 @@ def main():
         rows.append(row)
         folders[label] = folder
     best = min(rows, key=lambda r: r["rmse_contact"])["method"]
+    for label, name, _ in NETWORKS:
+        checkpoint = os.path.join(networks, f"{name}.ckpt")
+        if os.path.exists(checkpoint):
+            row, folder = evaluate(work, presses, label, None, None, checkpoint)
+            rows.append(row)
+            folders[label] = folder
     ii = {}
-    for source, prefix in ((best, "est"), ("truth", "truth")):
+    sources = [(best, "est", folders[best])] + ([("Ours", "est", folders["Ours"])] if "Ours" in folders else [])
+    for source, prefix, folder in sources + [("truth", "truth", folders[best])]:
         for conversion, suffix in (("Q", "q"), ("refraction", "refr")):
-            ii[(source, conversion)] = table_ii(presses, folders[best], f"{prefix}_{suffix}")
-    write_outputs(args.out, rows, best, ii, presses, time.time() - start)
+            ii[(source, conversion)] = table_ii(presses, folder, f"{prefix}_{suffix}")
+    write_outputs(args.out, rows, best, ii, presses, time.time() - start, trained)
     if not args.work:
         shutil.rmtree(work)
     print(f"wrote {args.out}/table_i.md, table_i.csv, table_ii.csv, presses.csv ({time.time() - start:.0f} s)")

@@ -124,6 +124,8 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
     throw InputError("the F-score threshold must be a positive number of mm, not " +
                      number_text(options.fscore_threshold_mm));
   if (!options.metrics.any()) throw InputError("no metric selected");
+  if (options.gt_to_est_samples && *options.gt_to_est_samples == 0)
+    throw InputError("the ground truth -> estimate direction needs at least one ground-truth point, not 0");
 
   CloudScore s;
   s.metrics = options.metrics;
@@ -145,8 +147,15 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
   if (options.metrics.p95_est_to_gt) s.p95_est_to_gt_mm = percentile(est_to_gt, 0.95);
   if (!options.metrics.needs_gt_to_est()) return s;
 
-  const std::vector<double> gt_to_est =
-      NearestPointIndex(std::move(queries), options.threads).nearest_distances(ground_truth.points(), options.threads);
+  const Points& all_gt = ground_truth.points();
+  Points strided;
+  if (options.gt_to_est_samples && *options.gt_to_est_samples < all_gt.size()) {
+    const std::size_t stride = (all_gt.size() + *options.gt_to_est_samples - 1) / *options.gt_to_est_samples;
+    strided.reserve(all_gt.size() / stride + 1);
+    for (std::size_t i = 0; i < all_gt.size(); i += stride) strided.push_back(all_gt[i]);
+  }
+  const std::vector<double> gt_to_est = NearestPointIndex(std::move(queries), options.threads)
+                                            .nearest_distances(strided.empty() ? all_gt : strided, options.threads);
   const double forward = mean(est_to_gt), backward = mean(gt_to_est);
   if (options.metrics.chamfer_gt_to_est) s.chamfer_gt_to_est_mm = backward;
   if (options.metrics.chamfer_symmetric) s.chamfer_symmetric_mm = 0.5 * (forward + backward);

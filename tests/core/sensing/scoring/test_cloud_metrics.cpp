@@ -178,6 +178,37 @@ TEST(CloudMetrics, The95thPercentileSeesALocalErrorTheMeanDilutes) {
   EXPECT_EQ(reported.metrics[1].unit, "mm");
 }
 
+TEST(CloudMetrics, TheReverseDirectionFromAStrideOfTheGroundTruth) {
+  // 3,000 ground-truth points, every 3rd (in the index's locality order, so
+  // spread evenly) from gt_to_est_samples = 1,000: gt -> est and recall are
+  // those of the 1,000, brute force; est -> gt keeps every point; the
+  // Hausdorff distance cannot exceed the full one.
+  const Points gt_points = test::random_points(3000, 40.0, 21);
+  const Points est = test::random_points(800, 45.0, 22);
+  const NearestPointIndex index(gt_points);
+  Points every_third;
+  for (std::size_t i = 0; i < index.points().size(); i += 3) every_third.push_back(index.points()[i]);
+  double backward = 0;
+  std::size_t within = 0;
+  for (const auto& q : every_third) {
+    const double d = test::brute_force_nearest(q, est);
+    backward += d;
+    within += d < 2.0;
+  }
+  scoring::ScoreOptions o;
+  o.fscore_threshold_mm = 2.0;
+  const scoring::CloudScore full = scoring::score_estimate(est, index, o);
+  o.gt_to_est_samples = 1000;
+  const scoring::CloudScore part = scoring::score_estimate(est, index, o);
+  EXPECT_LE(test::relative_error(part.chamfer_gt_to_est_mm, backward / every_third.size()), 1e-9);
+  EXPECT_DOUBLE_EQ(part.recall, double(within) / every_third.size());
+  EXPECT_EQ(part.chamfer_est_to_gt_mm, full.chamfer_est_to_gt_mm);
+  EXPECT_EQ(part.precision, full.precision);
+  EXPECT_LE(part.hausdorff_mm, full.hausdorff_mm);
+  o.gt_to_est_samples = 0;
+  EXPECT_THROW(scoring::score_estimate(est, index, o), InputError);
+}
+
 TEST(CloudMetrics, SelectionLimitsWhatIsComputedAndReported) {
   scoring::ScoreOptions o;
   o.metrics = MetricSelection::parse({"chamfer_est_to_gt"});

@@ -18,6 +18,7 @@
 // which cost one search per ground-truth point.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,14 @@ struct ScoreOptions {
   MetricSelection metrics;
   double fscore_threshold_mm = kDefaultFscoreThresholdMm;
   int threads = 0;  // 0: all
+  // The ground truth -> estimate direction (chamfer_gt_to_est, its half of
+  // the Hausdorff distance, recall) from about this many ground-truth points,
+  // an even stride through them in the index's locality order (so spread
+  // evenly over the surface), instead of all: a mesh sampled at 100 per mm^2
+  // has millions.
+  // Its Hausdorff half is then a lower bound, short of the true one by at
+  // most the stride's spacing. Not set: every point.
+  std::optional<std::size_t> gt_to_est_samples;
 };
 
 // The outcome for one estimate; only the selected metrics are set.

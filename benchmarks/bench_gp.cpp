@@ -7,7 +7,16 @@
 //                            (/0: the variance solved afresh, /1: V cached;
 //                            /2: as /1, then the mean on the 200 x 200 grid
 //                            that the main job scores each touch, which also
-//                            solves the weights alpha = A^-1 z)
+//                            solves the weights alpha = A^-1 z; /3: as /1 with
+//                            next_touch's footprint_variance_reduction choice
+//                            instead of Eq. 10's)
+//   BM_NextTouchChoice       the choice alone at n = 2,000 on the 196 cells:
+//                            /0/x Eq. 10 (max_variance), /1/x
+//                            footprint_variance_reduction; /x/1 right after a
+//                            touch of 60 points (the candidate cache extends
+//                            by those rows, the mean's weights are solved),
+//                            /x/0 on the same model again (the choice's own
+//                            arithmetic only)
 //   BM_ModelSelection        select_hyperparameters: /0 from scikit-learn's one
 //                            start (like for like with the peer), /1 from the
 //                            three default starts (the stage's cold selection),
@@ -42,6 +51,7 @@
 #include "gp/marginal_likelihood.hpp"
 #include "gp/vector_exp.hpp"
 #include "gp_surface_model.hpp"
+#include "footprint_choice.hpp"
 #include "touch_choice.hpp"
 
 namespace {
@@ -193,8 +203,11 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
     const gp_surface::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
                                                      batch[static_cast<std::size_t>(touch)].z);
     paths += report.path == gp_surface::UpdatePath::bordered ? 1 : 0;
-    const VarianceChoice choice = max_variance_cell(GpSurfaceModel(next, std::nullopt), grid, 1);
-    benchmark::DoNotOptimize(choice.cell);
+    if (state.range(0) == 3) {
+      benchmark::DoNotOptimize(footprint_variance_reduction_cell(GpSurfaceModel(next, std::nullopt), grid, {}).cell);
+    } else {
+      benchmark::DoNotOptimize(max_variance_cell(GpSurfaceModel(next, std::nullopt), grid, 1).cell);
+    }
     if (state.range(0) == 2) benchmark::DoNotOptimize(next->mean_on_grid(grid_xs, grid_ys).sum());
     current = next;
     ++touch;
@@ -202,7 +215,42 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
   state.counters["n_mean"] = static_cast<double>(n0 + kTouchPoints * (kTouches + 1) / 2);
   state.counters["bordered_share"] = paths / static_cast<double>(state.iterations());
 }
-BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_NextTouchChoice(benchmark::State& state) {
+  const Samples& s = samples();
+  const std::vector<Samples> batch = touches();
+  auto base = std::make_shared<gp_surface::ExactGp>(gp_surface::KernelKind::rbf, kFoxMask);
+  const Eigen::Index n0 = kTrainingPoints - kTouchPoints;  // 2,000 after the touch
+  base->fit(s.xy.topRows(n0), s.z.head(n0));
+  base->reserve(kTrainingPoints + kTouchPoints);
+  const WorkspaceGrid grid = fox_mask_grid();
+  const GpSurfaceModel before(base, std::nullopt);
+  // The previous touch's choice filled the candidate cache (and, for the
+  // footprint strategy, the candidates' V^T V).
+  if (state.range(0) == 1)
+    footprint_variance_reduction_cell(before, grid, {});
+  else
+    max_variance_cell(before, grid, 1);
+  const bool after_touch = state.range(1) == 1;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto next = base;
+    if (after_touch) {
+      next = std::make_shared<gp_surface::ExactGp>(*base);
+      next->add_points(batch[0].xy, batch[0].z);
+    }
+    const GpSurfaceModel model(next, std::nullopt);
+    state.ResumeTiming();
+    if (state.range(0) == 1)
+      benchmark::DoNotOptimize(footprint_variance_reduction_cell(model, grid, {}).cell);
+    else
+      benchmark::DoNotOptimize(max_variance_cell(model, grid, 1).cell);
+  }
+  state.counters["n"] = static_cast<double>(n0 + (after_touch ? kTouchPoints : 0));
+  state.counters["candidates"] = grid.cells();
+}
+BENCHMARK(BM_NextTouchChoice)->ArgsProduct({{0, 1}, {1, 0}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_ModelSelection(benchmark::State& state) {
   const Samples data = selection_data();

@@ -20,6 +20,8 @@ class GpSurfaceModel final : public SurfaceModel {
     return gp_->mean_on_grid(xs, ys);
   }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
+  std::optional<Eigen::MatrixXd> covariance(const Eigen::MatrixX2d& xy) const override { return gp_->covariance(xy); }
+  std::optional<double> noise_variance_mm2() const override { return gp_->hyperparameters().noise_variance_mm2; }
   std::optional<std::array<double, 2>> data_z_range_mm() const override { return data_z_range_mm_; }
   std::map<std::string, double> hyperparameters() const override;
   const std::shared_ptr<const gp_surface::ExactGp>& gp() const { return gp_; }

@@ -17,6 +17,8 @@ class SparseSurfaceModel final : public SurfaceModel {
   std::size_t training_size() const override { return static_cast<std::size_t>(gp_->size()); }
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return gp_->mean(xy); }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
+  std::optional<Eigen::MatrixXd> covariance(const Eigen::MatrixX2d& xy) const override { return gp_->covariance(xy); }
+  std::optional<double> noise_variance_mm2() const override { return gp_->hyperparameters().noise_variance_mm2; }
   std::optional<std::array<double, 2>> data_z_range_mm() const override { return data_z_range_mm_; }
   std::map<std::string, double> hyperparameters() const override;
 

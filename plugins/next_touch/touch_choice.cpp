@@ -7,8 +7,19 @@
 
 namespace touchcloud::next_touch {
 
+void check_choice_grid(const WorkspaceGrid& grid) {
+  if (!(grid.x_mm[1] > grid.x_mm[0]) || !(grid.y_mm[1] > grid.y_mm[0]))
+    throw InputError("the workspace is empty: x [" + std::to_string(grid.x_mm[0]) + ", " + std::to_string(grid.x_mm[1]) +
+                     "] mm, y [" + std::to_string(grid.y_mm[0]) + ", " + std::to_string(grid.y_mm[1]) +
+                     "] mm (each needs max > min)");
+  if (grid.cells_x < 1 || grid.cells_y < 1 || grid.cells() < 2)
+    throw InputError("the workspace grid has " + std::to_string(grid.cells_x) + " x " + std::to_string(grid.cells_y) +
+                     " cells: choosing a touch needs at least 2 cells");
+}
+
 VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGrid& grid, int oversample,
                                  const std::set<int>& avoid) {
+  check_choice_grid(grid);
   // Candidates at the centres of the cells of a finer grid.
   WorkspaceGrid fine = grid;
   fine.cells_x *= oversample;
@@ -31,6 +42,7 @@ VarianceChoice max_variance_cell(const SurfaceModel& surface, const WorkspaceGri
 }
 
 int random_cell(const WorkspaceGrid& grid, const std::set<int>& avoid, std::mt19937_64& rng) {
+  check_choice_grid(grid);
   std::vector<int> free;
   for (int c = 0; c < grid.cells(); ++c)
     if (!avoid.count(c)) free.push_back(c);

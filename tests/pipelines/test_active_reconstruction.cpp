@@ -3,6 +3,8 @@
 // never repeats a cell, nothing is rendered, and a seed reproduces the run.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <set>
 
 #include "test_support.hpp"
@@ -11,11 +13,13 @@ using namespace touchcloud;
 namespace fs = std::filesystem;
 
 namespace {
-RunResult run_active(const std::string& pipeline, int touches, std::uint64_t seed, const fs::path& out) {
+RunResult run_active(const std::string& pipeline, int touches, std::uint64_t seed, const fs::path& out,
+                     const std::map<std::string, std::string>& extra = {}) {
   PluginRegistry registry;
-  Pipeline p = Pipeline::load(test::source_dir() / "pipelines" / pipeline,
-                              {{"explore.max_iterations", std::to_string(touches)}, {"surface.resolution", "[80, 80]"}},
-                              registry);
+  std::vector<Override> overrides = {{"explore.max_iterations", std::to_string(touches)},
+                                     {"surface.resolution", "[80, 80]"}};
+  for (const auto& [key, value] : extra) overrides.push_back({key, value});
+  Pipeline p = Pipeline::load(test::source_dir() / "pipelines" / pipeline, overrides, registry);
   RunOptions o;
   o.seed = seed;
   o.out_dir = out;
@@ -55,4 +59,29 @@ TEST(ActiveReconstruction, SeededRunsAreIdentical) {
   const std::string a = test::read_file(dir / "a/wave_surface_active_surface.pcd");
   ASSERT_FALSE(a.empty());
   EXPECT_EQ(a, test::read_file(dir / "b/wave_surface_active_surface.pcd"));
+}
+
+// The footprint-aware strategy with the space-filling start on the fox mask:
+// seeded, the same cells and the same surface twice; every choice expected
+// to leave less variance than there was, and none chosen twice.
+TEST(ActiveReconstruction, FootprintStrategyRunsAreSeededAndReduceTheVariance) {
+  test::TempDir dir;
+  const std::map<std::string, std::string> fvr = {{"plan.strategy", "footprint_variance_reduction"},
+                                                  {"plan.start", "space_filling"}};
+  const RunResult a = run_active("fox_mask_active.yaml", 8, 5, dir / "a", fvr);
+  const RunResult b = run_active("fox_mask_active.yaml", 8, 5, dir / "b", fvr);
+  EXPECT_EQ(series(a, "plan.cell"), series(b, "plan.cell"));
+  const std::string surface = test::read_file(dir / "a/fox_mask_active_surface.pcd");
+  ASSERT_FALSE(surface.empty());
+  EXPECT_EQ(surface, test::read_file(dir / "b/fox_mask_active_surface.pcd"));
+  const auto& cells = series(a, "plan.cell");
+  EXPECT_EQ(std::set<double>(cells.begin(), cells.end()).size(), cells.size());
+  const auto& now = series(a, "plan.mean_variance");
+  const auto& left = series(a, "plan.expected_mean_variance");
+  ASSERT_EQ(left.size(), 4u) << "8 touches, the first 4 space-filling";
+  for (std::size_t k = 0; k < left.size(); ++k) {
+    EXPECT_TRUE(std::isfinite(left[k]) && left[k] >= 0) << k;
+    EXPECT_LT(left[k], now[k]) << k;
+  }
+  EXPECT_LT(series(a, "score.chamfer_est_to_gt").back(), 3.0);
 }

@@ -37,6 +37,10 @@ struct ExactGp::FactorStore {
   Eigen::MatrixXd v;  // capacity x m
   Eigen::Index v_rows = 0;
   Eigen::RowVectorXd v_norms;
+  // V^T V over rows [0, gram_rows), for the posterior covariance among the
+  // candidates; extended from the cached rows only when asked for.
+  Eigen::MatrixXd gram;
+  Eigen::Index gram_rows = 0;
 };
 
 ExactGp::ExactGp(KernelKind kind, const Hyperparameters& h, ExactGpOptions options)
@@ -117,6 +121,10 @@ void ExactGp::move_to_new_store(Eigen::Index capacity) {
       grown->v.topRows(rows) = store_->v.topRows(rows);
       grown->v_rows = rows;
       grown->v_norms = rows == store_->v_rows ? store_->v_norms : grown->v.topRows(rows).colwise().squaredNorm();
+      if (store_->gram_rows > 0 && store_->gram_rows <= rows) {
+        grown->gram = store_->gram;
+        grown->gram_rows = store_->gram_rows;
+      }
     }
   }
   store_ = std::move(grown);
@@ -264,15 +272,16 @@ Eigen::MatrixXd ExactGp::mean_on_grid(const Eigen::VectorXd& xs_mm, const Eigen:
   return out;
 }
 
-void ExactGp::variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd& out) const {
-  FactorStore& store = *store_;
-  std::lock_guard<std::mutex> lock(store.mutex);
+void ExactGp::extend_cached_rows(const Eigen::MatrixX2d& xy_mm) const {
+  FactorStore& store = *store_;  // the caller holds store.mutex
   const Eigen::Index m = xy_mm.rows();
   if (store.candidates_mm.rows() != m || store.candidates_mm != xy_mm || store.v.rows() != store.l.rows()) {
     store.candidates_mm = xy_mm;
     store.v.resize(store.l.rows(), m);
     store.v_rows = 0;
     store.v_norms = Eigen::RowVectorXd::Zero(m);
+    store.gram.resize(0, 0);
+    store.gram_rows = 0;
   }
   const Eigen::Index r = store.v_rows;
   if (r < n_) {
@@ -288,11 +297,40 @@ void ExactGp::variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd&
     store.v_norms += v2.colwise().squaredNorm();
     store.v_rows = n_;
   }
+}
+
+void ExactGp::variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd& out) const {
+  FactorStore& store = *store_;
+  std::lock_guard<std::mutex> lock(store.mutex);
+  extend_cached_rows(xy_mm);
   // An older snapshot (fewer rows than the cache holds) sums its own rows.
   if (store.v_rows == n_)
     out -= store.v_norms.transpose();
   else
     out -= store.v.topRows(n_).colwise().squaredNorm().transpose();
+}
+
+void ExactGp::covariance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::MatrixXd& out) const {
+  FactorStore& store = *store_;
+  std::lock_guard<std::mutex> lock(store.mutex);
+  extend_cached_rows(xy_mm);
+  const Eigen::Index m = xy_mm.rows();
+  if (store.v_rows != n_) {  // an older snapshot: its own rows
+    const auto v = store.v.topRows(n_);
+    out.selfadjointView<Eigen::Lower>().rankUpdate(v.transpose(), -1.0);
+    return;
+  }
+  if (store.gram.rows() != m || store.gram_rows > n_) {
+    store.gram = Eigen::MatrixXd::Zero(m, m);
+    store.gram_rows = 0;
+  }
+  // The rows added since the last call: a rank-k update of the lower triangle.
+  if (store.gram_rows < n_) {
+    const auto v2 = store.v.middleRows(store.gram_rows, n_ - store.gram_rows);
+    store.gram.selfadjointView<Eigen::Lower>().rankUpdate(v2.transpose());
+    store.gram_rows = n_;
+  }
+  out.triangularView<Eigen::Lower>() -= store.gram;
 }
 
 Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count) const {
@@ -312,6 +350,28 @@ Eigen::VectorXd ExactGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t* cl
     }
     clamped = clamp_latent_variance(out, "GP", n_);
   }
+  if (clamped_count) *clamped_count = clamped;
+  return out;
+}
+
+Eigen::MatrixXd ExactGp::covariance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count) const {
+  check_finite(xy_mm, "query point");
+  const Eigen::Index m = xy_mm.rows();
+  Eigen::MatrixXd out(m, m);
+  const CentredXy q = centre(xy_mm, centring_);
+  kernel_.fill_lower(q.x, q.y, 0.0, out);  // the prior, K(C, C)
+  std::size_t clamped = 0;
+  if (n_ > 0 && m > 0) {
+    if (m <= options_.max_cached_candidates) {
+      covariance_at_cached(xy_mm, out);
+    } else {
+      Eigen::MatrixXd v(n_, m);
+      kernel_.fill_cross(x_, y_, q.x, q.y, v);
+      solve_lower_in_place(factor(), v);
+      out.selfadjointView<Eigen::Lower>().rankUpdate(v.transpose(), -1.0);
+    }
+  }
+  clamped = clamp_latent_covariance(out, "GP", n_);
   if (clamped_count) *clamped_count = clamped;
   return out;
 }

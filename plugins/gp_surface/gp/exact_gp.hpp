@@ -85,6 +85,12 @@ class ExactGp {
   // finite (gp/latent_variance.hpp). Thread-safe, like every const member; a
   // set asked for again (same points, same order) reuses V.
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
+  // Latent posterior covariance among the query points, m x m: K(C, C) - V^T V
+  // with V = L^-1 K(X, C); exactly symmetric, its diagonal clamped and
+  // counted as variance()'s, RunError for an entry that is not finite. A set
+  // asked for again keeps V^T V and adds the new rows' part only (a rank-k
+  // update per touch of k points instead of n m^2).
+  Eigen::MatrixXd covariance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
   double log_marginal_likelihood() const;
 
   Eigen::Index size() const { return n_; }
@@ -106,7 +112,10 @@ class ExactGp {
   // to a copy of the factor when another model writes there or room is short.
   void claim_rows(Eigen::Index k);
   void move_to_new_store(Eigen::Index capacity);
+  // The candidate cache (store mutex held): V for `xy_mm` up to row n_.
+  void extend_cached_rows(const Eigen::MatrixX2d& xy_mm) const;
   void variance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::VectorXd& out) const;
+  void covariance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::MatrixXd& out) const;
   Eigen::Index query_block() const;
   // Calls f(first query, K(train, block)) over `xy_mm` in blocks of
   // query_block() columns, so memory stays n x block whatever the query count.

@@ -17,4 +17,11 @@ namespace touchcloud::gp_surface {
 std::size_t clamp_latent_variance(Eigen::Ref<Eigen::VectorXd> variance_mm2, const std::string& model,
                                   Eigen::Index training_points);
 
+// The same for a posterior covariance matrix: its diagonal is clamped as
+// above, and every entry must be finite (RunError naming the first that is
+// not). The lower triangle is copied to the upper, so the result is exactly
+// symmetric whatever rounding left.
+std::size_t clamp_latent_covariance(Eigen::Ref<Eigen::MatrixXd> covariance_mm2, const std::string& model,
+                                    Eigen::Index training_points);
+
 }  // namespace touchcloud::gp_surface

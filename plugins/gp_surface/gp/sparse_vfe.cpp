@@ -92,4 +92,23 @@ Eigen::VectorXd SparseVfeGp::variance(const Eigen::MatrixX2d& xy_mm, std::size_t
   return out;
 }
 
+Eigen::MatrixXd SparseVfeGp::covariance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count) const {
+  check_finite(xy_mm, "query point");
+  const Eigen::Index m = xy_mm.rows();
+  Eigen::MatrixXd out(m, m);
+  const CentredXy q = centre(xy_mm, centring_);
+  kernel_.fill_lower(q.x, q.y, 0.0, out);
+  if (n_ > 0 && m > 0) {
+    Eigen::MatrixXd w(ux_.size(), m);
+    kernel_.fill_cross(ux_, uy_, q.x, q.y, w);
+    l_uu_.triangularView<Eigen::Lower>().solveInPlace(w);
+    out.selfadjointView<Eigen::Lower>().rankUpdate(w.transpose(), -1.0);
+    l_b_.triangularView<Eigen::Lower>().solveInPlace(w);
+    out.selfadjointView<Eigen::Lower>().rankUpdate(w.transpose(), 1.0);
+  }
+  const std::size_t clamped = clamp_latent_covariance(out, "sparse VFE GP", n_);
+  if (clamped_count) *clamped_count = clamped;
+  return out;
+}
+
 }  // namespace touchcloud::gp_surface

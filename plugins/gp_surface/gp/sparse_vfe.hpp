@@ -33,6 +33,10 @@ class SparseVfeGp {
   // Latent variance, clamped at 0 and counted, RunError when not finite, as
   // ExactGp::variance.
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
+  // Latent posterior covariance among the query points (m x m):
+  // K(C, C) - W^T W + U^T U with W = L_uu^-1 K_uC and U = L_B^-1 W; diagonal
+  // clamped as variance()'s, RunError for an entry that is not finite.
+  Eigen::MatrixXd covariance(const Eigen::MatrixX2d& xy_mm, std::size_t* clamped_count = nullptr) const;
 
   Eigen::Index size() const { return n_; }
   const Hyperparameters& hyperparameters() const { return kernel_.hyperparameters(); }

@@ -22,8 +22,9 @@ class Chamfer : public touchcloud::test::PipelineFixture {
   void SetUp() override {
     // Ground truth: three points 10 mm apart on the x axis; the estimate 1 mm
     // above the first and 2 mm above the second. By hand: est -> gt 1.5 mm,
-    // gt -> est (3 + sqrt(104)) / 3 mm, Hausdorff sqrt(104) mm; at 1.5 mm
-    // precision 1/2, recall 1/3, F-score 0.4.
+    // gt -> est (3 + sqrt(104)) / 3 mm, Hausdorff sqrt(104) mm, 95th
+    // percentile est -> gt 2 mm (the larger of two); at 1.5 mm precision 1/2,
+    // recall 1/3, F-score 0.4.
     test::save_pcd(dir_ / "gt.pcd", cloud({{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}));
     test::save_pcd(dir_ / "est.pcd", cloud({{0, 0, 1}, {10, 0, 2}}));
   }
@@ -57,6 +58,12 @@ TEST_F(Chamfer, HandCheckedMetricsOfACloud) {
   EXPECT_DOUBLE_EQ(series(r, "score.recall").values.at(0), 1.0 / 3);
   EXPECT_EQ(series(r, "score.fscore").unit, "");
   EXPECT_EQ(r.record.metrics.count("score.fscore_threshold"), 0u) << "a parameter, not a result";
+  EXPECT_DOUBLE_EQ(series(r, "score.p95_est_to_gt").values.at(0), 2.0);
+  // The last item's local errors beside the final chamfer.
+  EXPECT_DOUBLE_EQ(series(r, "score.final_p95_mm").values.at(0), 2.0);
+  EXPECT_DOUBLE_EQ(series(r, "score.final_hausdorff_mm").values.at(0), std::sqrt(104.0));
+  EXPECT_DOUBLE_EQ(series(r, "score.final_fscore").values.at(0), 0.4);
+  EXPECT_EQ(series(r, "score.final_hausdorff_mm").unit, "mm");
 }
 
 TEST_F(Chamfer, ThresholdAndMetricSelection) {
@@ -65,6 +72,9 @@ TEST_F(Chamfer, ThresholdAndMetricSelection) {
   EXPECT_DOUBLE_EQ(series(r, "score.chamfer_est_to_gt").values.at(0), 1.5);
   EXPECT_EQ(r.record.metrics.count("score.hausdorff"), 0u);
   EXPECT_EQ(r.record.metrics.count("score.chamfer_gt_to_est"), 0u);
+  EXPECT_EQ(r.record.metrics.count("score.final_hausdorff_mm"), 0u) << "not selected, not reported";
+  EXPECT_EQ(r.record.metrics.count("score.final_p95_mm"), 0u);
+  EXPECT_DOUBLE_EQ(series(r, "score.final_fscore").values.at(0), 0.8);
 }
 
 TEST_F(Chamfer, EachLoopIterationAddsToTheSeries) {

@@ -2,6 +2,9 @@
 // the guard that keeps bad variances from choosing a touch.
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <set>
+
 #include "pipeline_fixture.hpp"
 #include "touch_choice.hpp"
 
@@ -98,6 +101,48 @@ TEST_F(NextTouchStage, InitialTouchesAreRandomThenVarianceDecides) {
   EXPECT_EQ(cells[2], 49);
   EXPECT_EQ(cells[3], 39) << "49 is touched; cell 39 at (95, 35) is next farthest from (0, 0)";
   EXPECT_EQ(r.record.metrics.at("plan.chosen_variance").values.size(), 2u);
+}
+
+// The footprint strategy and the space-filling start, twice with one seed:
+// the same cells. The plane's variance grows with the distance from (0, 0);
+// a press covers a patch, so the first choice is not the far corner 49 that
+// Eq. 10 takes, but a cell whose press takes in more of the variance.
+TEST_F(NextTouchStage, FootprintStrategyAndSpaceFillingStartAreFixedByTheSeed) {
+  const std::string yaml =
+      "stages:\n  - id: model\n    plugin: test_plane_surface\n    params: {peak_mm: [0, 0], correlation_mm: 15}\n"
+      "  - id: l\n    loop:\n      max_iterations: 6\n      stages:\n"
+      "        - id: plan\n          plugin: next_touch\n"
+      "          params: {workspace_x_mm: [0, 100], workspace_y_mm: [0, 50], grid: [10, 5], initial_random: 2,\n"
+      "                   strategy: footprint_variance_reduction, start: space_filling}\n"
+      "          inputs: {surface: model.surface}\n";
+  std::vector<std::vector<double>> runs;
+  for (int i = 0; i < 2; ++i) {
+    Pipeline p = load(yaml);
+    RunOptions o;
+    o.quiet = true;
+    o.seed = 11;
+    const RunResult r = run_pipeline(p, o);
+    runs.push_back(r.record.metrics.at("plan.cell").values);
+    const auto& left = r.record.metrics.at("plan.expected_mean_variance").values;
+    const auto& now = r.record.metrics.at("plan.mean_variance").values;
+    ASSERT_EQ(left.size(), 4u);
+    for (std::size_t k = 0; k < left.size(); ++k) {
+      EXPECT_TRUE(std::isfinite(left[k]) && left[k] >= 0) << left[k];
+      EXPECT_LT(left[k], now[k]);
+    }
+  }
+  EXPECT_EQ(runs[0], runs[1]);
+  ASSERT_EQ(runs[0].size(), 6u);
+  EXPECT_EQ(std::set<double>(runs[0].begin(), runs[0].end()).size(), 6u) << "no cell twice";
+  EXPECT_NE(runs[0][2], 49) << "Eq. 10's corner";
+}
+
+TEST_F(NextTouchStage, AOneCellWorkspaceIsRefusedAtValidation) {
+  const auto d = errors("stages:\n  - id: plan\n    plugin: next_touch\n"
+                        "    params: {workspace_x_mm: [0, 10], workspace_y_mm: [0, 10], grid: [1, 1]}\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter 'grid'")) << d[0].str();
+  EXPECT_TRUE(touchcloud::test::mentions(d[0], "choosing a touch needs at least 2 cells")) << d[0].str();
 }
 
 TEST_F(NextTouchStage, EmptyWorkspaceIsRefusedAtValidation) {

@@ -25,6 +25,15 @@ double accurate_sum(const std::vector<double>& values) {
 
 double mean(const std::vector<double>& values) { return accurate_sum(values) / static_cast<double>(values.size()); }
 
+// Nearest rank: the ceil(q N)-th smallest value (1-based).
+double percentile(std::vector<double> values, double q) {
+  const std::size_t n = values.size();
+  const std::size_t rank = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(q * static_cast<double>(n))));
+  const auto nth = values.begin() + static_cast<std::ptrdiff_t>(std::min(rank, n) - 1);
+  std::nth_element(values.begin(), nth, values.end());
+  return *nth;
+}
+
 double share_below(const std::vector<double>& distances, double threshold) {
   const auto within = std::count_if(distances.begin(), distances.end(), [&](double d) { return d < threshold; });
   return static_cast<double>(within) / static_cast<double>(distances.size());
@@ -63,6 +72,7 @@ const std::vector<MetricName>& metric_names() {
       {"chamfer_est_to_gt", "est->gt mm", "mm", &S::chamfer_est_to_gt, true, &C::chamfer_est_to_gt_mm},
       {"chamfer_gt_to_est", "gt->est mm", "mm", &S::chamfer_gt_to_est, true, &C::chamfer_gt_to_est_mm},
       {"chamfer_symmetric", "symmetric mm", "mm", &S::chamfer_symmetric, true, &C::chamfer_symmetric_mm},
+      {"p95_est_to_gt", "p95 mm", "mm", &S::p95_est_to_gt, true, &C::p95_est_to_gt_mm},
       {"hausdorff", "hausdorff mm", "mm", &S::hausdorff, true, &C::hausdorff_mm},
       {"fscore", "fscore", "", &S::fscore, true, &C::fscore},
       {"precision", "precision", "", &S::fscore, false, &C::precision},
@@ -83,7 +93,7 @@ std::string known_list() {
 MetricSelection MetricSelection::parse(const std::vector<std::string>& entries) {
   const std::vector<std::string> names = split_names(entries);
   if (names.empty()) throw InputError("no metric named (known: " + known_list() + ")");
-  MetricSelection s{false, false, false, false, false};
+  MetricSelection s{false, false, false, false, false, false};
   for (const auto& n : names) {
     if (n == "all") {
       s = MetricSelection{};
@@ -114,6 +124,8 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
     throw InputError("the F-score threshold must be a positive number of mm, not " +
                      number_text(options.fscore_threshold_mm));
   if (!options.metrics.any()) throw InputError("no metric selected");
+  if (options.gt_to_est_samples && *options.gt_to_est_samples == 0)
+    throw InputError("the ground truth -> estimate direction needs at least one ground-truth point, not 0");
 
   CloudScore s;
   s.metrics = options.metrics;
@@ -132,10 +144,18 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
   const std::vector<double> est_to_gt = memo ? ground_truth.nearest_distances(queries, *memo, options.threads)
                                               : ground_truth.nearest_distances(queries, options.threads);
   if (options.metrics.chamfer_est_to_gt) s.chamfer_est_to_gt_mm = mean(est_to_gt);
+  if (options.metrics.p95_est_to_gt) s.p95_est_to_gt_mm = percentile(est_to_gt, 0.95);
   if (!options.metrics.needs_gt_to_est()) return s;
 
-  const std::vector<double> gt_to_est =
-      NearestPointIndex(std::move(queries), options.threads).nearest_distances(ground_truth.points(), options.threads);
+  const Points& all_gt = ground_truth.points();
+  Points strided;
+  if (options.gt_to_est_samples && *options.gt_to_est_samples < all_gt.size()) {
+    const std::size_t stride = (all_gt.size() + *options.gt_to_est_samples - 1) / *options.gt_to_est_samples;
+    strided.reserve(all_gt.size() / stride + 1);
+    for (std::size_t i = 0; i < all_gt.size(); i += stride) strided.push_back(all_gt[i]);
+  }
+  const std::vector<double> gt_to_est = NearestPointIndex(std::move(queries), options.threads)
+                                            .nearest_distances(strided.empty() ? all_gt : strided, options.threads);
   const double forward = mean(est_to_gt), backward = mean(gt_to_est);
   if (options.metrics.chamfer_gt_to_est) s.chamfer_gt_to_est_mm = backward;
   if (options.metrics.chamfer_symmetric) s.chamfer_symmetric_mm = 0.5 * (forward + backward);

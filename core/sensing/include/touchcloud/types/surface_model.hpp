@@ -28,6 +28,15 @@ class SurfaceModel {
   }
   // Posterior variance (mm^2) at each row; finite and >= 0.
   virtual Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const = 0;
+  // Posterior covariance (mm^2) of the latent surface among the rows of `xy`:
+  // symmetric m x m, its diagonal variance(xy), every entry finite. What a
+  // touch there would take away from the uncertainty elsewhere needs it
+  // (next_touch's footprint_variance_reduction). Nothing for a model that
+  // cannot give it.
+  virtual std::optional<Eigen::MatrixXd> covariance(const Eigen::MatrixX2d& /*xy*/) const { return std::nullopt; }
+  // Variance (mm^2) of the noise on one observed z; nothing when the model
+  // does not say.
+  virtual std::optional<double> noise_variance_mm2() const { return std::nullopt; }
   // Variance on the lattice, laid out as mean_on_lattice's result.
   Eigen::MatrixXd variance_on_lattice(const Eigen::VectorXd& xs, const Eigen::VectorXd& ys) const {
     const Eigen::VectorXd v = variance(lattice_points(xs, ys));

@@ -1,0 +1,97 @@
+// The posterior covariance among query points (what next_touch's
+// footprint_variance_reduction updates by low rank): against the textbook
+// formula with a dense solve, its diagonal against variance(), the cached
+// V^T V across touches and snapshots against a fresh solve, and the sparse
+// VFE model with inducing points at the data against the exact model.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "gp/exact_gp.hpp"
+#include "gp/kernel.hpp"
+#include "gp/sparse_vfe.hpp"
+#include "gp_fixtures.hpp"
+
+namespace touchcloud::gp_surface {
+namespace {
+
+// K(C, C) - K(C, X) (K(X, X) + s^2 I)^-1 K(X, C), by a dense LDL^T solve.
+Eigen::MatrixXd textbook_covariance(const Hyperparameters& h, const Eigen::MatrixX2d& xy, const Eigen::MatrixX2d& c) {
+  const Kernel k(KernelKind::rbf, h);
+  Eigen::MatrixXd kxx(xy.rows(), xy.rows()), kxc(xy.rows(), c.rows()), kcc(c.rows(), c.rows());
+  const Eigen::VectorXd x = xy.col(0), y = xy.col(1), cx = c.col(0), cy = c.col(1);
+  k.fill_cross(x, y, x, y, kxx);
+  kxx.diagonal().array() += h.noise_variance_mm2;
+  k.fill_cross(x, y, cx, cy, kxc);
+  k.fill_cross(cx, cy, cx, cy, kcc);
+  return kcc - kxc.transpose() * kxx.ldlt().solve(kxc);
+}
+
+double largest_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+TEST(GpPosteriorCovariance, EqualsTheTextbookFormulaAndItsDiagonalIsTheVariance) {
+  const Eigen::MatrixX2d xy = test::random_xy(150, 31);
+  const Eigen::VectorXd z = test::heights(xy, 0.05);
+  const Eigen::MatrixX2d c = test::grid_xy(7, 6, -5.0, 65.0);  // also outside the data
+  const Hyperparameters h{4.0, 8.0, 0.01};
+  for (Eigen::Index cache : {Eigen::Index{0}, Eigen::Index{1024}}) {
+    ExactGpOptions o;
+    o.max_cached_candidates = cache;
+    ExactGp gp(KernelKind::rbf, h, o);
+    gp.fit(xy, z);
+    const Eigen::MatrixXd s = gp.covariance(c);
+    EXPECT_LT(largest_difference(s, textbook_covariance(h, xy, c)), 1e-10) << "cache " << cache;
+    EXPECT_EQ(s, s.transpose()) << "exactly symmetric";
+    EXPECT_LT((s.diagonal() - gp.variance(c)).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_GT(s(0, 1), 0.0) << "neighbouring queries co-vary";
+  }
+  ExactGp empty(KernelKind::rbf, h);
+  const Eigen::MatrixXd prior = empty.covariance(c);
+  EXPECT_DOUBLE_EQ(prior(3, 3), 4.0) << "no data: the prior";
+}
+
+// V^T V is kept for a repeated set and extended by each touch's rows; every
+// snapshot, newest or older, must give what a fresh solve gives.
+TEST(GpPosteriorCovariance, CachedAcrossTouchesAndSnapshotsEqualsAFreshSolve) {
+  const Eigen::MatrixX2d xy = test::random_xy(400, 82);
+  const Eigen::VectorXd z = test::heights(xy, 0.05);
+  const Eigen::MatrixX2d c = test::grid_xy(14, 14, 2.0, 58.0);
+  const Hyperparameters h{4.0, 8.0, 0.01};
+  ExactGpOptions uncached;
+  uncached.max_cached_candidates = 0;
+  const auto fresh = [&](const ExactGp& model) {
+    ExactGp copy(KernelKind::rbf, h, uncached);
+    copy.fit(xy.topRows(model.size()), z.head(model.size()), model.centring());
+    return copy.covariance(c);
+  };
+  ExactGp gp(KernelKind::rbf, h);
+  gp.fit(xy.topRows(160), z.head(160));
+  gp.covariance(c);  // fills the cache
+  std::vector<ExactGp> snapshots;
+  for (Eigen::Index n = 160; n < 400; n += 60) {
+    ExactGp next = gp;
+    next.add_points(xy.middleRows(n, 60), z.segment(n, 60));
+    snapshots.push_back(gp);
+    gp = next;
+    if (n == 220) gp.variance(c);  // the variance path extends V first; the Gram catches up after
+    EXPECT_LT(largest_difference(gp.covariance(c), fresh(gp)), 1e-11) << n;
+  }
+  for (const ExactGp& old : snapshots) EXPECT_LT(largest_difference(old.covariance(c), fresh(old)), 1e-11) << old.size();
+}
+
+TEST(GpPosteriorCovariance, SparseWithInducingPointsAtTheDataEqualsExact) {
+  const Eigen::MatrixX2d xy = test::random_xy(90, 5);
+  const Eigen::VectorXd z = test::heights(xy, 0.05);
+  const Eigen::MatrixX2d c = test::grid_xy(5, 5, 0.0, 60.0);
+  const Hyperparameters h{4.0, 8.0, 0.05};
+  ExactGp exact(KernelKind::rbf, h);
+  exact.fit(xy, z);
+  SparseVfeGp sparse(KernelKind::rbf, h);
+  sparse.fit(xy, z, xy);
+  const Eigen::MatrixXd s = sparse.covariance(c);
+  EXPECT_LT(largest_difference(s, exact.covariance(c)), 1e-7);
+  EXPECT_LT((s.diagonal() - sparse.variance(c)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+}  // namespace
+}  // namespace touchcloud::gp_surface

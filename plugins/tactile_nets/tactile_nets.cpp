@@ -18,7 +18,7 @@ namespace lrn = touchcloud::learning;
 class TactileNets final : public Stage {
   std::string contact_checkpoint_, depth_checkpoint_;
   double contact_probability_ = 0.5;
-  int threads_ = 2;
+  int threads_ = 1;
   // Found at check, loaded at configure.
   lrn::TactileNetHeaders headers_;
   std::optional<lrn::TactileNetPair> nets_;
@@ -30,7 +30,11 @@ class TactileNets final : public Stage {
         .doc("TactileDepthNet checkpoint written by tactile_net_train (network tactile_depthnet), same input size");
     p.add("contact_probability", contact_probability_, 0.5).above(0).below(1)
         .doc("contact where ContactNet's probability exceeds this");
-    p.add("threads", threads_, 2).range(1, 256).doc("libtorch's intra-op threads");
+    // One thread: on a 2-core machine busy with anything else, libgomp's
+    // second thread spins waiting for a core (bench_tactile_nets at a load
+    // average of 11: 23 ms on one thread, 271 ms on two; with
+    // OMP_WAIT_POLICY=PASSIVE in the environment 16-17 ms on either).
+    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
   }
 
   void declare_ports(PortSet& ports) override {

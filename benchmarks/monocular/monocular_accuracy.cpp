@@ -7,7 +7,7 @@
 // With the learning library, the same presses through seed 001's networks
 // (ContactNet and TactileDepthNet, the shipped checkpoints under models/,
 // trained on other objects: pipelines/tactile_nets_*.yaml). Time per frame:
-// bench_photometric_depth (one core), bench_tactile_nets (both, 2 threads).
+// bench_photometric_depth (one core), bench_tactile_nets (both, 1 and 2 threads).
 //
 //   build/benchmarks/bin/monocular_accuracy [--noise SIGMA_GREY] [--out benchmarks/monocular]
 //       [--contact-net FILE] [--depth-net FILE]
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
   const auto calibration =
       sensor::load_photometric_calibration(kSource + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
 #ifdef TOUCHCLOUD_WITH_NETWORKS
-  torch::set_num_threads(2);
+  torch::set_num_threads(1);  // accuracy only; one thread is fastest on a busy 2-core machine
   learning::TactileNetPair nets(contact_net, depth_net);
 #endif
   touch_simulator::Scene scene = touch_simulator::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml");

@@ -4,12 +4,17 @@
 // RMSE and largest error (mm) over the true contact region, contact IoU and
 // F1, for photometric_depth with a zero and with a free border, from the
 // shipped calibration (sample_clouds/gelsight_ball/photometric_calibration.yaml).
-// Time per frame: bench_photometric_depth (one core).
+// With the learning library, the same presses through seed 001's networks
+// (ContactNet and TactileDepthNet, the shipped checkpoints under models/,
+// trained on other objects: pipelines/tactile_nets_*.yaml). Time per frame:
+// bench_photometric_depth (one core), bench_tactile_nets (both, 1 and 2 threads).
 //
 //   build/benchmarks/bin/monocular_accuracy [--noise SIGMA_GREY] [--out benchmarks/monocular]
+//       [--contact-net FILE] [--depth-net FILE]
 //
 // writes results.md (and prints it).
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -21,6 +26,9 @@
 #include "gelsight_simulation.hpp"
 #include "gradients/photometric_depth_solver.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+#include "touchcloud/learning/tactile_net_pair.hpp"
+#endif
 
 using namespace touchcloud;
 using touch_simulator::ObjectSurface;
@@ -96,21 +104,21 @@ struct Scores {
   long contact_px = 0;
 };
 
-Scores score(const photometric::DepthResult& r, const HeightMap& truth) {
+Scores score(const cv::Mat& height_mm, const cv::Mat& contact_mask, const HeightMap& truth) {
   Scores s;
   double sum2 = 0;
   for (int v = 0; v < truth.height_mm.rows; ++v)
     for (int u = 0; u < truth.height_mm.cols; ++u) {
       if (!truth.contact_mask.at<std::uint8_t>(v, u)) continue;
-      const double e = r.height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
+      const double e = height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
       sum2 += e * e;
       s.max_error = std::max(s.max_error, std::abs(e));
       ++s.contact_px;
     }
   s.rmse = s.contact_px ? std::sqrt(sum2 / s.contact_px) : 0;
-  const double tp = cv::countNonZero(r.contact_mask & truth.contact_mask);
-  const double fp = cv::countNonZero(r.contact_mask & ~truth.contact_mask);
-  const double fn = cv::countNonZero(~r.contact_mask & truth.contact_mask);
+  const double tp = cv::countNonZero(contact_mask & truth.contact_mask);
+  const double fp = cv::countNonZero(contact_mask & ~truth.contact_mask);
+  const double fn = cv::countNonZero(~contact_mask & truth.contact_mask);
   s.iou = tp / std::max(1.0, tp + fp + fn);
   s.f1 = 2 * tp / std::max(1.0, 2 * tp + fp + fn);
   return s;
@@ -121,17 +129,24 @@ Scores score(const photometric::DepthResult& r, const HeightMap& truth) {
 int main(int argc, char** argv) {
   double noise = 0;
   std::string out;
+  std::string contact_net = kSource + "/models/contact_net_w8.ckpt", depth_net = kSource + "/models/tactile_depthnet_w8.ckpt";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     if (key == "--noise") noise = std::stod(argv[i + 1]);
     else if (key == "--out") out = argv[i + 1];
+    else if (key == "--contact-net") contact_net = argv[i + 1];
+    else if (key == "--depth-net") depth_net = argv[i + 1];
     else {
-      std::cerr << "usage: monocular_accuracy [--noise SIGMA_GREY] [--out DIR]\n";
+      std::cerr << "usage: monocular_accuracy [--noise SIGMA_GREY] [--out DIR] [--contact-net FILE] [--depth-net FILE]\n";
       return 2;
     }
   }
   const auto calibration =
       sensor::load_photometric_calibration(kSource + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+  torch::set_num_threads(1);  // accuracy only; one thread is fastest on a busy 2-core machine
+  learning::TactileNetPair nets(contact_net, depth_net);
+#endif
   touch_simulator::Scene scene = touch_simulator::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml");
   // Every press descends at 0.04 mm per frame from the first frame: no fast
   // approach overshooting the press depth.
@@ -142,7 +157,7 @@ int main(int argc, char** argv) {
   }
   std::ostringstream table;
   table << std::fixed << std::setprecision(3);
-  table << "| object | press (mm) | contact px | border | height RMSE (mm) | max error (mm) | contact IoU | contact F1 |\n"
+  table << "| object | press (mm) | contact px | method | height RMSE (mm) | max error (mm) | contact IoU | contact F1 |\n"
         << "|---|---|---|---|---|---|---|---|\n";
   for (const Case& c : cases()) {
     touch_simulator::GelSightSimulation sim(scene, 1, c.object);
@@ -150,22 +165,34 @@ int main(int argc, char** argv) {
       if (sim.step(c.target, false).travel_past_contact_mm >= c.press_mm) break;
     const cv::Mat image = sim.render().image, reference = sim.render_reference().image;
     const HeightMap truth = sim.height_truth(0.05);
+    auto row = [&](const std::string& method, const Scores& s) {
+      table << "| " << c.name << " | " << c.press_mm << " | " << s.contact_px << " | " << method << " | " << s.rmse
+            << " | " << s.max_error << " | " << s.iou << " | " << s.f1 << " |\n";
+    };
     for (auto border : {photometric::PoissonBorder::Zero, photometric::PoissonBorder::Free}) {
       photometric::DepthOptions options;
       options.border = border;
       photometric::PhotometricDepthSolver solver(calibration, options);
-      const Scores s = score(solver.solve(image, reference), truth);
-      table << "| " << c.name << " | " << c.press_mm << " | " << s.contact_px << " | "
-            << (border == photometric::PoissonBorder::Zero ? "zero" : "free") << " | " << s.rmse << " | "
-            << s.max_error << " | " << s.iou << " | " << s.f1 << " |\n";
+      const photometric::DepthResult r = solver.solve(image, reference);
+      row(border == photometric::PoissonBorder::Zero ? "classical, zero border" : "classical, free border",
+          score(r.height_mm, r.contact_mask, truth));
     }
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+    const learning::TactilePrediction p = nets.predict(image, reference);
+    row("networks", score(p.height_mm, p.contact_probability > 0.5, truth));
+#endif
   }
   std::ostringstream text;
-  text << "# Classical depth (photometric_depth) on held-out presses\n\n"
+  text << "# Classical depth (photometric_depth) and seed 001's networks on held-out presses\n\n"
        << "Simulated GelSight Mini-like sensor (320 x 240 px, 0.06 mm/px), calibration from nine presses of a 4 mm "
           "ball; each object pressed once, the given depth past first contact at 0.04 mm per frame (truth contact: true "
           "height > 0.05 mm); pixel noise sigma "
        << noise << " grey levels.\n"
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+       << "Networks: ContactNet `" << std::filesystem::path(contact_net).filename().string() << "` and TactileDepthNet `"
+       << std::filesystem::path(depth_net).filename().string()
+       << "` (models/), trained on the indenter board (sample_clouds/gelsight_board/), contact where the probability > 0.5.\n"
+#endif
        << "`build/benchmarks/bin/monocular_accuracy --noise " << noise << "`\n\n"
        << table.str();
   std::cout << text.str();

@@ -4,8 +4,8 @@
 // validation split, or both. The layout (paired images and height maps) is
 // checked before the run starts.
 #include <opencv2/core/version.hpp>
-#include <opencv2/imgcodecs.hpp>
 
+#include "samples/tactile_sample_files.hpp"
 #include "touchcloud/io/tactile_dataset.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
@@ -58,16 +58,7 @@ class TactileDatasetReader final : public Stage {
   }
 
   cv::Mat read(const fs::path& file, int type) const {
-    cv::Mat image = cv::imread(file.string(), type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED);
-    if (image.empty()) throw InputError("dataset file " + file.string() + " cannot be read");
-    if (image.type() != type)
-      throw InputError("dataset file " + file.string() + " is " + cv::typeToString(image.type()) + "; expected " +
-                       cv::typeToString(type));
-    if (image.cols != info_.width_px || image.rows != info_.height_px)
-      throw InputError("dataset file " + file.string() + " is " + std::to_string(image.cols) + " x " +
-                       std::to_string(image.rows) + " px; " + info_file_ + " says " + std::to_string(info_.width_px) +
-                       " x " + std::to_string(info_.height_px));
-    return image;
+    return tactile_dataset::read_dataset_image(file, type, info_, info_file_);
   }
 
   MonoColourFramePtr frame(cv::Mat image, long index) const {
@@ -91,11 +82,10 @@ class TactileDatasetReader final : public Stage {
           "reference", frame(read(fs::path(info_file_).parent_path() / io::kTactileDatasetReference, CV_8UC3), index));
     if (io.wants("height")) {
       auto map = std::make_shared<HeightMap>();
-      map->height_mm = read(s.depth, CV_32FC1);
-      if (!cv::checkRange(map->height_mm))
-        throw InputError("dataset file " + s.depth.string() + " holds NaN or infinity (heights in mm, never NaN)");
+      tactile_dataset::SampleTruth truth = tactile_dataset::read_sample_truth(s, info_, info_file_);
+      map->height_mm = truth.height_mm;
       map->valid = cv::Mat(map->height_mm.size(), CV_8UC1, cv::Scalar(255));
-      map->contact_mask = s.mask.empty() ? cv::Mat(map->height_mm > info_.contact_threshold_mm) : read(s.mask, CV_8UC1);
+      map->contact_mask = truth.contact_mask;
       map->sensor = info_.sensor;
       map->mm_per_px = info_.mm_per_px;
       map->gel_thickness_mm = info_.gel_thickness_mm;

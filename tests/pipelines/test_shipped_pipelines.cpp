@@ -12,7 +12,8 @@ namespace fs = std::filesystem;
 #ifdef TOUCHCLOUD_WITHOUT_NETWORKS
 namespace {
 bool read_network_plugins(const fs::path& file) {
-  return test::read_file(file).find("plugin: gs_depthnet") != std::string::npos;
+  const std::string text = test::read_file(file);
+  return text.find("plugin: gs_depthnet") != std::string::npos || text.find("plugin: tactile_net") != std::string::npos;
 }
 }  // namespace
 #endif

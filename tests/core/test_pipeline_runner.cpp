@@ -140,6 +140,20 @@ TEST_F(PipelineRunner, SummaryRecordsParametersSeedVersionsTimesAndMetrics) {
   EXPECT_EQ(j["metrics"]["c.value"]["series"], nlohmann::json::array({0.5, 1.0, 1.5}));
   EXPECT_EQ(j["metrics"]["c.value"]["value"], 1.5);
   EXPECT_FALSE(fs::exists(out / (".touchcloud-staging-" + std::to_string(::getpid()))));
+  EXPECT_EQ(j["overrides"], nlohmann::json::array());
+}
+
+// The overrides a run was given are recorded as given, with where they came
+// from (a report labels a sweep's runs by its --vary ones).
+TEST_F(PipelineRunner, SummaryRecordsTheOverridesAsGiven) {
+  Pipeline p = load("stages:\n  - id: c\n    plugin: test_counter\n",
+                    {{"c.step", "0.25"}, {"c.offsets", "[1,  2]", "--vary"}});
+  RunOptions o;
+  o.quiet = true;
+  const auto j = nlohmann::json::parse(run_pipeline(p, o).summary_json);
+  EXPECT_EQ(j["overrides"], nlohmann::json::parse(R"([{"key": "c.step", "value": "0.25", "origin": "--set"},
+                                                      {"key": "c.offsets", "value": "[1,  2]", "origin": "--vary"}])"));
+  EXPECT_EQ(j["stages"][0]["params"]["step"], 0.25);
 }
 
 // A stage's checks run at load (a scorer reads its ground-truth file

@@ -133,22 +133,52 @@
     drawn.push(["3d", renderer.domElement]);
   })();
 
-  // Chamfer per touch (uPlot), one curve per run.
+  // Chamfer per touch (uPlot): one curve per run of `list`, named by `name`.
+  function chamferPlot(box, list, name, plotName, height) {
+    var n = Math.max.apply(null, list.map(function (c) { return c.series.length; }));
+    var xs = []; for (var i = 1; i <= n; ++i) xs.push(i);
+    var cols = [xs], series = [{ label: "touch" }];
+    list.forEach(function (c, k) {
+      cols.push(xs.map(function (_, i) { return i < c.series.length ? c.series[i] : null; }));
+      var colour = touchColour(k + 3, list.length);
+      series.push({ label: name(c), stroke: "#" + colour.getHexString(), width: k === 0 ? 2 : 1.25,
+                    value: function (u, v) { return v == null ? "-" : v.toFixed(3) + " " + data.chamfer.unit; } });
+    });
+    new uPlot({ width: box.clientWidth, height: height, series: series, hooks: plotHooks(plotName),
+      scales: { x: { time: false } },
+      axes: [{ label: "touch" }, { label: "chamfer (" + data.chamfer.unit + ")", size: 60 }] }, cols, box);
+  }
+
   (function drawChamfer() {
     var box = document.getElementById("tc-chamfer"), curves = data.chamfer.curves;
     if (!curves.length) { box.textContent = "no chamfer series in this run"; return; }
-    var n = Math.max.apply(null, curves.map(function (c) { return c.series.length; }));
-    var xs = []; for (var i = 1; i <= n; ++i) xs.push(i);
-    var cols = [xs], series = [{ label: "touch" }];
-    curves.forEach(function (c, k) {
-      cols.push(xs.map(function (_, i) { return i < c.series.length ? c.series[i] : null; }));
-      var colour = touchColour(k + 3, curves.length);
-      series.push({ label: c.label + " (" + c.metric + ")", stroke: "#" + colour.getHexString(), width: k === 0 ? 2 : 1.25,
-                    value: function (u, v) { return v == null ? "-" : v.toFixed(3) + " " + data.chamfer.unit; } });
+    chamferPlot(box, curves, function (c) { return c.label + " (" + c.metric + ")"; }, "chamfer", 280);
+  })();
+
+  // A folder of runs (a sweep's): one panel per setting, named by the values
+  // varied, with its repeats' curves, final accuracy and time.
+  (function drawSettings() {
+    var settings = data.settings || [], curves = data.chamfer.curves, unit = data.chamfer.unit;
+    if (!settings.length) return;
+    document.getElementById("tc-settings-section").hidden = false;
+    var holder = document.getElementById("tc-settings"), rows = [];
+    function spread(s, u) {
+      return s.n === 0 ? "-" : fmt(s.mean) + (s.n > 1 ? " \u00b1 " + fmt(s.sd) : "") + " " + u;
+    }
+    settings.forEach(function (s, k) {
+      var panel = el("div"), box = el("div"), f = s.final, t = s.wall_time_s;
+      panel.className = "plot setting";
+      box.className = "tc-canvas-box";
+      panel.appendChild(el("h3", s.label));
+      panel.appendChild(box);
+      panel.appendChild(el("p", "final chamfer " + spread(f, unit) + (f.n > 1 ? " (sd; " + fmt(f.min) + " to " + fmt(f.max) + ")" : "") +
+                               " over " + s.curves.length + (s.curves.length === 1 ? " run" : " runs") + "; wall time " + spread(t, "s")));
+      holder.appendChild(panel);
+      chamferPlot(box, s.curves.map(function (i) { return curves[i]; }), function (c) { return "seed " + c.seed; }, "setting" + k, 200);
+      rows.push([s.label, s.curves.length, f.mean, f.sd, f.min, f.max, t.mean]);
     });
-    new uPlot({ width: box.clientWidth, height: 280, series: series, hooks: plotHooks("chamfer"),
-      scales: { x: { time: false } },
-      axes: [{ label: "touch" }, { label: "chamfer (" + data.chamfer.unit + ")", size: 60 }] }, cols, box);
+    table("tc-settings-table", ["setting", "runs", "final chamfer mean (" + unit + ")", "sd", "min", "max", "wall time mean (s)"],
+          rows.map(function (r) { return r.map(function (v) { return v === null ? "-" : v; }); }));
   })();
 
   // Time per stage, stacked by phase (uPlot bars; each series drawn from 0
@@ -182,18 +212,25 @@
     var best = Infinity, front = runs.map(function (r) { if (r.final < best) { best = r.final; return r.final; } return null; });
     new uPlot({ width: box.clientWidth, height: 280, hooks: plotHooks("pareto"),
       series: [{ label: "wall time (s)", value: function (u, v) { return v == null ? "-" : v.toFixed(3) + " s"; } },
-               { label: "run (" + data.chamfer.unit + ")", stroke: "#1f77b4", paths: function () { return null; }, points: { show: true, size: 8, fill: "#1f77b4" } },
+               { label: "run (" + data.chamfer.unit + ")", stroke: "#1f77b4", paths: function () { return null; }, points: { show: true, size: 8, fill: "#1f77b4" },
+                 value: function (u, v, si, i) { return v == null || i == null ? "-" : runs[i].label + ": " + v.toFixed(3); } },
                { label: "Pareto front", stroke: "#d62728", width: 2, spanGaps: true, points: { show: true, size: 5 } }],
       scales: { x: { time: false } },
       axes: [{ label: "wall time (s)" }, { label: "final chamfer (" + data.chamfer.unit + ")", size: 60 }] }, [xs, ys, front], box);
   })();
 
-  // Images among the run's outputs (sensing pipelines), as written.
-  (data.images || []).forEach(function (im) {
+  // Pictures among the run's outputs (a sensing pipeline's markers, or a map
+  // beside its truth), as written, with the caption the stage gave each; a
+  // picture counts as drawn once the browser has decoded it.
+  (data.images || []).forEach(function (im, k) {
     document.getElementById("tc-images-section").hidden = false;
     var fig = el("figure"), img = el("img");
+    waiting += 1;
+    img.onload = function () { drawn.push(["image" + k, img]); waiting -= 1; finish(); };
+    img.onerror = function () { waiting -= 1; finish(); };  // the page's error listener names it
     img.alt = im.name; img.src = "data:" + im.mime + ";base64," + im.base64;
-    fig.appendChild(img); fig.appendChild(el("figcaption", im.name));
+    fig.appendChild(img);
+    fig.appendChild(el("figcaption", (im.caption ? im.caption + " " : "") + "(" + im.name + ")"));
     document.getElementById("tc-images").appendChild(fig);
   });
 

@@ -1,6 +1,16 @@
 """How the benchmark scripts start work on several MPI ranks (Open MPI's
-mpirun on this machine; under Slurm, start the script with srun instead)."""
+mpirun on this machine; under Slurm, start the script with srun instead).
+
+Run as `python3 mpi_launch.py FOLDER` on every rank of an mpirun job (what
+run_each does), it runs the commands of FOLDER/commands.json: each rank takes
+the next command no rank has taken yet (an exclusive file in FOLDER, which
+every rank must see) and records each one's exit status and stderr in
+FOLDER/result-I.json."""
+import json
 import os
+import subprocess
+import sys
+import tempfile
 
 
 def mpirun_command(ranks):
@@ -8,3 +18,57 @@ def mpirun_command(ranks):
     cores allowed, no pinning (each run's own threads decide), root allowed."""
     root = ["--allow-run-as-root"] if os.geteuid() == 0 else []
     return ["mpirun", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", *root]
+
+
+def launched_ranks():
+    """(rank, size) as mpirun (Open MPI) or srun (PMIx) tell it; (0, 1) alone."""
+    for rank, size in (("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"), ("PMIX_RANK", "SLURM_NTASKS")):
+        if rank in os.environ and size in os.environ:
+            return int(os.environ[rank]), int(os.environ[size])
+    return 0, 1
+
+
+def run_each(commands, ranks, parent):
+    """Runs every command (a list of arguments) once, spread over one
+    `mpirun -n RANKS` job; a new folder in PARENT (which every rank must see)
+    holds the job's bookkeeping and is removed after. Returns the failures
+    as (command, exit status, stderr), in the commands' order."""
+    os.makedirs(parent, exist_ok=True)
+    folder = tempfile.mkdtemp(prefix="mpi-each-", dir=parent)
+    with open(os.path.join(folder, "commands.json"), "w") as f:
+        json.dump(commands, f)
+    job = subprocess.run(mpirun_command(ranks) + [sys.executable, os.path.abspath(__file__), folder],
+                         capture_output=True, text=True)
+    failed = []
+    for i, command in enumerate(commands):
+        record = os.path.join(folder, f"result-{i}.json")
+        if not os.path.exists(record):  # a rank died, and mpirun ended the job
+            failed.append((command, job.returncode, f"not finished: the mpirun job ended ({job.returncode}):\n"
+                                                    f"{job.stderr}"))
+            continue
+        with open(record) as f:
+            status, stderr = json.load(f)
+        if status != 0:
+            failed.append((command, status, stderr))
+    subprocess.run(["rm", "-rf", folder], check=True)
+    return failed
+
+
+def _run_claimed(folder):
+    rank, _ = launched_ranks()
+    with open(os.path.join(folder, "commands.json")) as f:
+        commands = json.load(f)
+    for i, command in enumerate(commands):
+        try:
+            os.close(os.open(os.path.join(folder, f"claim-{i}"), os.O_CREAT | os.O_EXCL))
+        except FileExistsError:
+            continue
+        done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        tmp = os.path.join(folder, f"result-{i}.tmp{rank}")
+        with open(tmp, "w") as f:
+            json.dump([done.returncode, done.stderr], f)
+        os.rename(tmp, os.path.join(folder, f"result-{i}.json"))
+
+
+if __name__ == "__main__":
+    _run_claimed(sys.argv[1])

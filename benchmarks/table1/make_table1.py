@@ -40,7 +40,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from mpi_launch import mpirun_command  # noqa: E402
+from mpi_launch import launched_ranks, mpirun_command  # noqa: E402
 
 # The methods of Table 1 as overrides of the "Ours" pipelines, then the
 # next-touch strategies beside Eq. 10 (plugins/next_touch: footprint_choice.hpp,
@@ -126,14 +126,6 @@ def run_one(args, obj, method, seed, workdir):
         "points": m["dedup.total_points"]["value"],
         "wall_time_s": summary["wall_time_s"],
     }
-
-
-def launched_ranks():
-    """(rank, size) as mpirun (Open MPI) or srun (PMIx) tell it; (0, 1) alone."""
-    for rank, size in (("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"), ("PMIX_RANK", "SLURM_NTASKS")):
-        if rank in os.environ and size in os.environ:
-            return int(os.environ[rank]), int(os.environ[size])
-    return 0, 1
 
 
 def run_on_ranks(args, todo, rank, size):

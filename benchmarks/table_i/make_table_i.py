@@ -27,10 +27,17 @@ their training curves); without --train the checkpoints already in
 --networks are evaluated, and the network rows are left out when there are
 none.
 
+Ours falls back to the shipped models/gs_depthnet_w8.ckpt (the same
+training) when --networks has no ours.ckpt.
+
+With --ranks N the presses and then the evaluations spread over one
+`mpirun -n N` job each (scripts/mpi_launch.py: each rank takes the next run
+no rank has taken yet); the tables are the same as with one rank.
+
 Usage (from the repository root, after building):
-  benchmarks/table_i/make_table_i.py --out benchmarks/table_i --train        # trains: about an hour on 2 cores
-  benchmarks/table_i/make_table_i.py --out benchmarks/table_i                # evaluates the committed networks
-  [--work DIR] [--jobs 2] [--networks DIR]
+  benchmarks/table_i/make_table_i.py --out benchmarks/table_i --train        # trains: about 1.5 h on 2 cores
+  benchmarks/table_i/make_table_i.py --out benchmarks/table_i                # evaluates the networks there
+  [--work DIR] [--jobs 2] [--ranks N] [--networks DIR]
 """
 import argparse
 import concurrent.futures
@@ -47,6 +54,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 CLI = os.path.join(ROOT, "build", "bin", "touchcloud")
 sys.path.insert(0, os.path.join(ROOT, "build", "python"))
 import touchcloud  # noqa: E402  (the build's Python module: reads the clouds)
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from mpi_launch import run_each  # noqa: E402
 
 SHAPES = ["triangle", "quadrilateral", "pentagon", "round", "edge"]
 FLAT_FACED = {"triangle": "Tri", "quadrilateral": "Quad", "pentagon": "Penta"}  # Table II's workpieces
@@ -94,26 +103,35 @@ def run_cli(args):
         sys.exit(f"make_table_i: `touchcloud {' '.join(args)}` failed ({done.returncode}):\n{done.stderr}")
 
 
+def run_all(commands, jobs, ranks, work):
+    """`touchcloud ARGS` for each ARGS of COMMANDS: JOBS at a time in this
+    process, or with RANKS > 1 spread over an `mpirun -n RANKS` job."""
+    if ranks <= 1:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+            list(pool.map(run_cli, commands))
+        return
+    failed = run_each([[CLI] + args for args in commands], ranks, work)
+    if failed:
+        command, status, stderr = failed[0]
+        sys.exit(f"make_table_i: {len(failed)} of {len(commands)} runs failed; `{' '.join(command)}` "
+                 f"({status}):\n{stderr}")
+
+
 def press_name(shape, depth, area):
     return f"{shape}_d{depth:.1f}_x{area[0]:+.0f}_y{area[1]:+.0f}"
 
 
-def make_test_set(work, jobs):
-    """One press.yaml run per press; then one dataset (index.csv + camera.yaml) over all of them."""
+def make_test_set(work, jobs, ranks):
+    """One press.yaml run per press (kept from an earlier run in WORK); then one
+    dataset (index.csv + camera.yaml) over all of them."""
     presses = [(s, d, a) for s in SHAPES for d in DEPTHS_MM for a in GEL_AREAS_MM]
-
-    def one(press):
-        shape, depth, area = press
-        out = os.path.join(work, "presses", press_name(*press))
-        if not os.path.exists(os.path.join(out, "press", "index.csv")):
-            run_cli(["run", os.path.join(ROOT, "benchmarks/table_i/press.yaml"), "--out", out, "--quiet",
-                     "--set", f"sim.scene={ROOT}/sample_clouds/indenters/{shape}.yaml",
-                     "--set", f"sim.press_depth_mm={depth}",
-                     "--set", f"sim.target_xy_mm=[{area[0]},{area[1]}]"])
-        return out
-
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        folders = list(pool.map(one, presses))
+    folders = [os.path.join(work, "presses", press_name(*press)) for press in presses]
+    run_all([["run", os.path.join(ROOT, "benchmarks/table_i/press.yaml"), "--out", out, "--quiet",
+              "--set", f"sim.scene={ROOT}/sample_clouds/indenters/{shape}.yaml",
+              "--set", f"sim.press_depth_mm={depth}",
+              "--set", f"sim.target_xy_mm=[{area[0]},{area[1]}]"]
+             for (shape, depth, area), out in zip(presses, folders)
+             if not os.path.exists(os.path.join(out, "press", "index.csv"))], jobs, ranks, work)
     rows, camera = [], None
     for i, (press, folder) in enumerate(zip(presses, folders)):
         with open(os.path.join(folder, "press", "index.csv")) as f:
@@ -169,15 +187,21 @@ def train_networks(work, networks):
     return seconds
 
 
-def evaluate(work, presses, label, method, block, checkpoint=None):
+def evaluation(work, presses, method, block, checkpoint=None):
+    """One evaluation run for run_all, a classical matcher's (evaluate.yaml) or a
+    network checkpoint's (evaluate_net.yaml): (its folder, emptied; its arguments)."""
     out = os.path.join(work, "eval", os.path.basename(checkpoint) if checkpoint else f"{method}_{block}")
     shutil.rmtree(out, ignore_errors=True)
     pipeline = "evaluate_net.yaml" if checkpoint else "evaluate.yaml"
     method_args = (["--set", f"disparity.checkpoint={checkpoint}"] if checkpoint else
                    ["--set", f"disparity.method={method}", "--set", f"disparity.block_size_px={block}"])
-    run_cli(["run", os.path.join(ROOT, "benchmarks/table_i", pipeline), "--out", out, "--quiet",
-             "--set", f"pairs.index={os.path.join(work, 'index.csv')}",
-             "--set", f"pairs_loop.max_iterations={len(presses)}"] + method_args)
+    return out, ["run", os.path.join(ROOT, "benchmarks/table_i", pipeline), "--out", out, "--quiet",
+                 "--set", f"pairs.index={os.path.join(work, 'index.csv')}",
+                 "--set", f"pairs_loop.max_iterations={len(presses)}"] + method_args
+
+
+def evaluate(label, out):
+    """Table I's row of the run in OUT."""
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     row = {"method": label}
@@ -186,7 +210,7 @@ def evaluate(work, presses, label, method, block, checkpoint=None):
             key = f"metrics.{m}_{region}_px" if m == "rmse" else f"metrics.{m}_{region}"
             row[f"{m}_{region}"] = metric(summary, key)
         row[f"coverage_{region}"] = metric(summary, f"metrics.coverage_{region}")
-    return row, out
+    return row
 
 
 def contact_height_mm(path):
@@ -290,7 +314,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", required=True, help="folder for the tables")
     ap.add_argument("--work", default=None, help="folder for the test set and runs (default: OUT/work, removed)")
-    ap.add_argument("--jobs", type=int, default=2, help="presses simulated at once")
+    ap.add_argument("--jobs", type=int, default=2, help="runs (presses, evaluations) at once on one rank")
+    ap.add_argument("--ranks", type=int, default=1,
+                    help="MPI ranks to spread the presses and the evaluations over (mpirun -n N)")
     ap.add_argument("--networks", default=None,
                     help="folder of the network rows' checkpoints (default OUT/networks)")
     ap.add_argument("--train", action="store_true", help="train the three networks into --networks first")
@@ -303,19 +329,18 @@ def main():
     start = time.time()
     networks = os.path.abspath(args.networks or os.path.join(args.out, "networks"))
     trained = train_networks(work, networks) if args.train else {}
-    presses = make_test_set(work, args.jobs)
-    rows, folders = [], {}
-    for label, method, block in MATCHERS:
-        row, folder = evaluate(work, presses, label, method, block)
-        rows.append(row)
-        folders[label] = folder
-    best = min(rows, key=lambda r: r["rmse_contact"])["method"]
+    presses = make_test_set(work, args.jobs, args.ranks)
+    evaluations = {label: evaluation(work, presses, method, block) for label, method, block in MATCHERS}
     for label, name, _ in NETWORKS:
         checkpoint = os.path.join(networks, f"{name}.ckpt")
+        if name == "ours" and not os.path.exists(checkpoint):
+            checkpoint = os.path.join(ROOT, "models", "gs_depthnet_w8.ckpt")
         if os.path.exists(checkpoint):
-            row, folder = evaluate(work, presses, label, None, None, checkpoint)
-            rows.append(row)
-            folders[label] = folder
+            evaluations[label] = evaluation(work, presses, None, None, checkpoint)
+    run_all([run for _, run in evaluations.values()], args.jobs, args.ranks, work)
+    folders = {label: folder for label, (folder, _) in evaluations.items()}
+    rows = [evaluate(label, folder) for label, folder in folders.items()]
+    best = min((r for r in rows if r["method"] in {m[0] for m in MATCHERS}), key=lambda r: r["rmse_contact"])["method"]
     ii = {}
     sources = [(best, "est", folders[best])] + ([("Ours", "est", folders["Ours"])] if "Ours" in folders else [])
     for source, prefix, folder in sources + [("truth", "truth", folders[best])]:

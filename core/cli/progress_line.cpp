@@ -24,10 +24,11 @@ constexpr std::chrono::milliseconds kTerminalPeriod{250}, kLogPeriod{5000};
 
 }  // namespace
 
-std::string progress_text(std::size_t done, std::size_t total, double elapsed_s, const std::string& noun) {
+std::string progress_text(std::size_t done, std::size_t total, double elapsed_s, const std::string& noun,
+                          std::size_t done_at_start) {
   std::string text = std::to_string(done) + "/" + std::to_string(total) + " " + noun;
-  if (done == 0 || !(elapsed_s > 0)) return text;
-  const double rate = static_cast<double>(done) / elapsed_s;
+  if (done <= done_at_start || !(elapsed_s > 0)) return text;
+  const double rate = static_cast<double>(done - done_at_start) / elapsed_s;
   char buf[64];
   std::snprintf(buf, sizeof buf, ", %.3g %s/s", rate, noun.c_str());
   text += buf;
@@ -55,12 +56,25 @@ void ProgressLine::done_one() {
 void ProgressLine::set(std::size_t done, std::size_t total, const std::string& noun) {
   std::lock_guard lock(mutex_);
   if (noun != noun_) start_ = Clock::now();  // another loop: its own rate
+  if (done != done_ || noun != noun_) step_.reset();  // the step's count was of the last iteration
   done_ = done, total_ = total, noun_ = noun;
 }
 
+void ProgressLine::set_step(const std::string& step, std::size_t done, std::size_t total, const std::string& noun) {
+  std::lock_guard lock(mutex_);
+  // A new step, or the same one counting again from below: its rate starts now.
+  if (!step_ || step_->name != step || step_->noun != noun || done < step_->done)
+    step_ = Step{step, noun, done, total, done, Clock::now()};
+  step_->done = done, step_->total = total;
+}
+
 std::string ProgressLine::text_locked() const {
-  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  return progress_text(done_, total_, elapsed, noun_) + (what_.empty() ? "" : "; " + what_);
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  std::string text = noun_.empty() && total_ == 0 ? "" : progress_text(done_, total_, since(start_), noun_);
+  if (step_)
+    text += (text.empty() ? "" : "; ") + step_->name + ": " +
+            progress_text(step_->done, step_->total, since(step_->start), step_->noun, step_->done_at_start);
+  return text + (what_.empty() ? "" : "; " + what_);
 }
 
 void ProgressLine::print_above(const std::string& line) {
@@ -85,6 +99,7 @@ void ProgressLine::tick() {
   const auto period = in_place_ ? kTerminalPeriod : kLogPeriod;
   while (!wake_.wait_for(lock, period, [this] { return stopped_; })) {
     if (in_place_ && Clock::now() - start_ < std::chrono::seconds(1)) continue;
+    if (text_locked().empty()) continue;  // nothing counted yet (a run without a loop, before its stage reports)
     if (in_place_)
       std::cerr << "\r\033[K" << text_locked() << std::flush;
     else
@@ -92,7 +107,7 @@ void ProgressLine::tick() {
     drawn_ = true;
   }
   if (in_place_ && drawn_) std::cerr << "\r\033[K" << std::flush;
-  if (!in_place_) std::cerr << "progress: " << text_locked() << "\n" << std::flush;
+  if (!in_place_ && !text_locked().empty()) std::cerr << "progress: " << text_locked() << "\n" << std::flush;
   drawn_ = false;
 }
 

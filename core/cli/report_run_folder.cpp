@@ -8,12 +8,16 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
+#include "report_settings.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/io/cloud_file.hpp"
+#include "touchcloud/run_context.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
 #include "touchcloud/types/workspace.hpp"
 
@@ -43,6 +47,32 @@ json read_run_summary(const fs::path& file) {
   return summary;
 }
 
+namespace {
+
+// Folder names in natural order: setting2 before setting10 (a sweep's order).
+bool natural_less(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+      std::size_t ei = i, ej = j;
+      while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
+      while (ej < b.size() && std::isdigit(static_cast<unsigned char>(b[ej]))) ++ej;
+      std::string_view x(a.data() + i, ei - i), y(b.data() + j, ej - j);
+      while (x.size() > 1 && x.front() == '0') x.remove_prefix(1);
+      while (y.size() > 1 && y.front() == '0') y.remove_prefix(1);
+      if (x.size() != y.size()) return x.size() < y.size();
+      if (x != y) return x < y;
+      i = ei, j = ej;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+}  // namespace
+
 std::vector<RunFolder> find_runs(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir.string() + " is not a folder (give a run's --out folder)");
@@ -53,7 +83,8 @@ std::vector<RunFolder> find_runs(const fs::path& dir) {
     std::vector<fs::path> subs;
     for (const auto& entry : fs::directory_iterator(parent))
       if (entry.is_directory() && fs::exists(entry.path() / "summary.json")) subs.push_back(entry.path() / "summary.json");
-    std::sort(subs.begin(), subs.end());
+    std::sort(subs.begin(), subs.end(),
+              [](const fs::path& a, const fs::path& b) { return natural_less(a.string(), b.string()); });
     files.insert(files.end(), subs.begin(), subs.end());
   }
   if (files.empty())
@@ -135,6 +166,74 @@ std::string chamfer_metric(const json& summary) {
 
 std::string param_text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
+// The caption a stage gave the picture `name` it wrote: the note `caption`
+// of the stage with a parameter naming the file (or its pattern, with
+// {iteration} for a number); "" when none did.
+std::string caption_of(const json& summary, const std::string& name) {
+  if (!summary.contains("stages") || !summary["stages"].is_array() || !summary.contains("notes") ||
+      !summary["notes"].is_object())
+    return "";
+  const std::string field = kIterationField;
+  for (const json& st : summary["stages"]) {
+    if (!st.is_object() || !st.contains("params") || !st["params"].is_object()) continue;
+    for (const auto& [key, value] : st["params"].items()) {
+      if (!value.is_string()) continue;
+      const std::string p = value.get<std::string>();
+      bool names = p == name;
+      if (const auto at = p.find(field); !names && at != std::string::npos) {
+        const std::string before = p.substr(0, at), after = p.substr(at + field.size());
+        names = name.size() > before.size() + after.size() && name.rfind(before, 0) == 0 &&
+                name.compare(name.size() - after.size(), after.size(), after) == 0 &&
+                std::all_of(name.begin() + static_cast<std::ptrdiff_t>(before.size()),
+                            name.end() - static_cast<std::ptrdiff_t>(after.size()),
+                            [](unsigned char c) { return std::isdigit(c); });
+      }
+      const std::string note = st.value("id", "") + ".caption";
+      if (names && summary["notes"].contains(note) && summary["notes"][note].is_string())
+        return summary["notes"][note].get<std::string>();
+    }
+  }
+  return "";
+}
+
+// Mean, sample standard deviation, min and max of `values` (none: nulls).
+json statistics(const std::vector<double>& values) {
+  if (values.empty()) return {{"n", 0}, {"mean", nullptr}, {"sd", nullptr}, {"min", nullptr}, {"max", nullptr}};
+  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  double squares = 0;
+  for (double v : values) squares += (v - mean) * (v - mean);
+  return {{"n", values.size()},
+          {"mean", mean},
+          {"sd", values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0},
+          {"min", *std::min_element(values.begin(), values.end())},
+          {"max", *std::max_element(values.begin(), values.end())}};
+}
+
+// The curves grouped by setting, in the order settings first appear; the
+// final accuracy and wall time of each over its runs.
+json settings_json(const json& curves) {
+  json settings = json::array();
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<std::size_t>> members;
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const std::string setting = curves[i]["setting"].get<std::string>();
+    if (!members.count(setting)) order.push_back(setting);
+    members[setting].push_back(i);
+  }
+  for (const std::string& setting : order) {
+    std::vector<double> finals, times;
+    for (std::size_t i : members[setting]) {
+      if (curves[i]["final"].is_number()) finals.push_back(curves[i]["final"].get<double>());
+      if (curves[i]["wall_time_s"].is_number()) times.push_back(curves[i]["wall_time_s"].get<double>());
+    }
+    settings.push_back({{"label", setting},
+                        {"curves", members[setting]},
+                        {"final", statistics(finals)},
+                        {"wall_time_s", statistics(times)}});
+  }
+  return settings;
+}
+
 }  // namespace
 
 json report_data(const std::vector<RunFolder>& runs) {
@@ -150,15 +249,21 @@ json report_data(const std::vector<RunFolder>& runs) {
                  {"wall_time_s", s.value("wall_time_s", json())},
                  {"load_time_s", s.value("load_time_s", json())}};
 
-  // Chamfer per touch, every run.
+  // Chamfer per touch, every run, named by its setting (what was varied) and seed.
+  const RunNames names = name_runs(runs);
+  if (runs.size() > 1) data["run"]["label"] = names.run.front();
   json curves = json::array();
   std::string unit;
-  for (const RunFolder& r : runs) {
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunFolder& r = runs[i];
     const std::string name = chamfer_metric(r.summary);
     if (name.empty()) continue;
     const json& m = r.summary["metrics"][name];
     if (unit.empty()) unit = m.value("unit", "");
-    curves.push_back({{"label", r.label == "." ? r.summary["pipeline"].value("name", "this run") : r.label},
+    curves.push_back({{"label", runs.size() > 1 ? names.run[i] : r.summary["pipeline"].value("name", "this run")},
+                      {"folder", r.label},
+                      {"setting", names.setting[i]},
+                      {"seed", r.summary.value("seed", json())},
                       {"metric", name},
                       {"series", m["series"]},
                       {"final", m.value("value", json())},
@@ -166,6 +271,8 @@ json report_data(const std::vector<RunFolder>& runs) {
   }
   data["chamfer"] = {{"unit", unit}, {"curves", curves}};
   if (curves.empty()) missing.push_back("chamfer per touch: no metric named *.chamfer* with a series in summary.json");
+  // A folder of runs: one panel per setting (its repeats' curves, final accuracy and time).
+  data["settings"] = runs.size() > 1 ? settings_json(curves) : json::array();
 
   // Stage times, parameters.
   json stages = json::array(), params = json::array();
@@ -303,7 +410,8 @@ json report_data(const std::vector<RunFolder>& runs) {
       }
       std::ifstream in(run.dir / name, std::ios::binary);
       const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      images.push_back({{"name", name}, {"mime", mime}, {"base64", base64(content.data(), content.size())}});
+      images.push_back({{"name", name}, {"mime", mime}, {"caption", caption_of(s, name)},
+                        {"base64", base64(content.data(), content.size())}});
     }
   data["images"] = images;
 

@@ -31,8 +31,8 @@ Action* add_run_verb(CLI::App& app) {
   cmd->add_option("--out", o.out, "output folder (default: out/<pipeline name>)");
   cmd->add_flag("-q,--quiet", o.quiet, "print no stage logs");
   cmd->add_flag("--progress", o.progress,
-                "show the run's progress (iterations of its loop, rate, time left) also when stderr is not a "
-                "terminal (logs, CI)");
+                "show the run's progress (iterations of its loop, a training stage's epochs, rate, time left) also "
+                "when stderr is not a terminal (logs, CI)");
   cmd->add_flag("--report", o.report, "also write report.html (touchcloud report) into the output folder");
   cmd->callback([] {
     action = [] {
@@ -49,14 +49,20 @@ Action* add_run_verb(CLI::App& app) {
         throw InputError("pipeline name '" + p.name() + "' cannot name a folder in out/; give --out DIR");
       options.out_dir = o.out.empty() ? std::filesystem::path("out") / p.name() : std::filesystem::path(o.out);
       options.quiet = o.quiet;
-      // Past a second, the top-level loop's iterations on one line (stage
-      // logs printed above it), in a terminal or when asked.
+      // Past a second, the top-level loop's iterations and a long stage's
+      // own count on one line (stage logs printed above it), in a terminal
+      // or when asked.
       ProgressLine progress(0, "", o.progress);
       options.log_sink = [&progress](const std::string& line) {
         progress.print_above(line.substr(0, line.size() - (!line.empty() && line.back() == '\n')));
       };
       options.on_loop_iteration = [&progress](const std::string& loop, std::int64_t done, std::int64_t budget) {
         progress.set(static_cast<std::size_t>(done), static_cast<std::size_t>(budget), loop + " iterations");
+      };
+      // A stage's progress within a long call (a trainer's epochs), after the loop's count.
+      options.on_stage_progress = [&progress](const std::string& stage, std::int64_t done, std::int64_t total,
+                                              const std::string& unit) {
+        progress.set_step(stage, static_cast<std::size_t>(done), static_cast<std::size_t>(total), unit);
       };
       const RunResult r = run_pipeline(p, options);
       progress.finish();

@@ -124,6 +124,9 @@ class ResolvedPipeline {
   std::vector<ResolvedNode> nodes;        // in execution order
   std::vector<ResolvedStage*> stages;     // every stage, in execution order
   std::vector<ResolvedLoop*> loops;
+  // What the caller changed (--set, a sweep's --vary): summary.json records
+  // them, and a report labels a folder's runs by the ones that differ.
+  std::vector<Override> overrides;
   RunRecord record;
   double load_time_s = 0;  // Pipeline::load: parsing, loading plugins, checks
 };

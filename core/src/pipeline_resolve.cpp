@@ -39,6 +39,7 @@ class Resolver {
     auto pipeline = std::make_unique<ResolvedPipeline>();
     pipeline->name = doc_.name;
     pipeline->file = doc_.file;
+    pipeline->overrides = overrides;
     pipeline_ = pipeline.get();
     pipeline->nodes = resolve_scope(doc_.nodes, {});
     if (diags_.empty()) check_wiring(doc_.nodes);

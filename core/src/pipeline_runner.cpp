@@ -54,7 +54,7 @@ class Runner {
     RunRecord& record = pipeline_.record;
     record = RunRecord{};
     want_captured_outputs();
-    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink};
+    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink, options_.on_stage_progress};
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays

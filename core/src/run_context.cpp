@@ -84,6 +84,13 @@ void RunContext::log(const std::string& message) const {
     std::clog << line.str() << std::flush;
 }
 
+void RunContext::progress(std::int64_t done, std::int64_t total, const std::string& unit) const {
+  if (total <= 0 || done < 0 || done > total || unit.empty())
+    throw RunError("stage '" + stage_id_ + "' reported progress " + std::to_string(done) + "/" + std::to_string(total) +
+                   " '" + unit + "': needs 0 <= done <= total, total > 0 and a unit");
+  if (settings_.on_progress) settings_.on_progress(stage_id_, done, total, unit);
+}
+
 std::string RunContext::with_iteration(std::string text) const {
   const std::string field = kIterationField, value = std::to_string(std::max(iteration_, 0));
   for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + value.size()))

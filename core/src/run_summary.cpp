@@ -14,6 +14,9 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
   nlohmann::json j;
   j["pipeline"] = {{"name", pipeline.name}, {"file", pipeline.file.string()}};
   j["seed"] = options.seed;
+  nlohmann::json overrides = nlohmann::json::array();
+  for (const auto& o : pipeline.overrides) overrides.push_back({{"key", o.key}, {"value", o.value}, {"origin", o.origin}});
+  j["overrides"] = overrides;
   j["versions"] = library_versions();
   j["versions"]["plugin_abi"] = kPluginAbiVersion;
   j["wall_time_s"] = result.wall_time_s;

@@ -1,6 +1,8 @@
 // `mpirun -n 2 touchcloud sweep|score` writes what one rank writes (times,
-// rank and host aside); a failing run is a row with its error; --resume runs
-// only what a stopped sweep left out. Skipped where mpirun is absent.
+// rank and host aside), and so does -n 4; a failing run is a row with its
+// error; --resume runs only what a stopped sweep left out. Skipped where
+// mpirun is absent. TOUCHCLOUD_TEST_MPI_RANKS=N runs the 2-rank tests on N
+// ranks instead.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -40,12 +42,28 @@ std::string mpirun() {
   GTEST_SKIP() << "needs mpirun and a build with -DTOUCHCLOUD_MPI=ON (apt-get install libopenmpi-dev "     \
                   "openmpi-bin; scripts/install-deps.sh installs both)"
 
-// `mpirun -n 2 touchcloud ARGS` (as root too; 2 ranks even on one core).
-touchcloud::test::CliResult run_on_two_ranks(const std::vector<std::string>& args, const std::string& env = "") {
-  std::vector<std::string> all = {"-n", "2", "--oversubscribe", "--allow-run-as-root",
+// The ranks of the tests below: 2, or TOUCHCLOUD_TEST_MPI_RANKS.
+int test_ranks() {
+  const char* n = std::getenv("TOUCHCLOUD_TEST_MPI_RANKS");
+  return n && std::atoi(n) >= 2 ? std::atoi(n) : 2;
+}
+
+// `mpirun -n RANKS touchcloud ARGS` (as root too; more ranks than cores).
+touchcloud::test::CliResult run_on_ranks(int ranks, const std::vector<std::string>& args, const std::string& env = "") {
+  std::vector<std::string> all = {"-n", std::to_string(ranks), "--oversubscribe", "--allow-run-as-root",
                                   touchcloud::test::cli_path().string()};
   all.insert(all.end(), args.begin(), args.end());
   return run_program("mpirun", all, env);
+}
+touchcloud::test::CliResult run_on_test_ranks(const std::vector<std::string>& args, const std::string& env = "") {
+  return run_on_ranks(test_ranks(), args, env);
+}
+
+// "0", "1", ... "n-1".
+std::set<std::string> rank_names(int n) {
+  std::set<std::string> names;
+  for (int r = 0; r < n; ++r) names.insert(std::to_string(r));
+  return names;
 }
 
 std::vector<std::string> csv_cells(const std::string& line) {
@@ -85,31 +103,44 @@ std::size_t count(const std::string& text, const std::string& what) {
 }
 }  // namespace
 
-TEST(MpiSweep, TwoRanksWriteWhatOneRankWrites) {
-  SKIP_WITHOUT_MPIRUN();
+// A sweep of 4 settings x `repeats` seeds on `ranks` ranks writes what one
+// rank writes; every rank ran some of the runs (each takes 0.1 s).
+void expect_sweep_on_ranks_as_on_one(int ranks, int repeats) {
   TempDir dir;
   write_file(dir / "p.yaml", counting_pipeline());
   const auto sweep = [&](const std::string& out) {
     return std::vector<std::string>{"sweep", (dir / "p.yaml").string(), "--vary", "c.step=0.5,2", "--vary",
-                                    "l.max_iterations=1,3", "--repeats", "2", "--seed", "7", "--out",
-                                    (dir / out).string(), "--accuracy", "c.value"};
+                                    "l.max_iterations=1,3", "--repeats", std::to_string(repeats), "--seed", "7",
+                                    "--out", (dir / out).string(), "--accuracy", "c.value"};
   };
   const auto one = run_cli(sweep("one"), kTestPlugins);
   ASSERT_EQ(one.exit_code, 0) << one.err;
-  const auto two = run_on_two_ranks(sweep("two"), kTestPlugins);
-  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
+  const auto many = run_on_ranks(ranks, sweep("many"), kTestPlugins);
+  ASSERT_EQ(many.exit_code, 0) << many.out << many.err;
 
-  std::set<std::string> ranks_one, ranks_two;
+  std::set<std::string> ranks_one, ranks_many;
   const std::string a = without_times(dir / "one/sweep.csv", &ranks_one);
-  EXPECT_EQ(a, without_times(dir / "two/sweep.csv", &ranks_two));
+  EXPECT_EQ(a, without_times(dir / "many/sweep.csv", &ranks_many));
   EXPECT_NE(a.find("random_draw"), std::string::npos) << "a metric drawn from the seed is compared too";
   EXPECT_EQ(ranks_one, std::set<std::string>{"0"});
-  EXPECT_EQ(ranks_two, (std::set<std::string>{"0", "1"})) << "8 runs of 0.1 s: both ranks ran some";
-  EXPECT_EQ(without_times(dir / "one/sweep_summary.csv"), without_times(dir / "two/sweep_summary.csv"));
-  // Progress on rank 0 covers the runs of both ranks; only rank 0 reports.
-  EXPECT_EQ(count(two.err, "/8] "), 8u) << two.err;
-  EXPECT_EQ(count(two.out, "wrote "), 1u) << two.out;
-  EXPECT_TRUE(fs::exists(dir / "two/runs/setting3_seed8/summary.json"));
+  EXPECT_EQ(ranks_many, rank_names(ranks)) << 4 * repeats << " runs of 0.1 s: every rank ran some";
+  EXPECT_EQ(without_times(dir / "one/sweep_summary.csv"), without_times(dir / "many/sweep_summary.csv"));
+  // Progress on rank 0 covers the runs of every rank; only rank 0 reports.
+  const std::string total = "/" + std::to_string(4 * repeats) + "] ";
+  EXPECT_EQ(count(many.err, total), static_cast<std::size_t>(4 * repeats)) << many.err;
+  EXPECT_EQ(count(many.out, "wrote "), 1u) << many.out;
+  EXPECT_TRUE(fs::exists(dir / ("many/runs/setting3_seed" + std::to_string(7 + repeats - 1) + "/summary.json")));
+}
+
+TEST(MpiSweep, TwoRanksWriteWhatOneRankWrites) {
+  SKIP_WITHOUT_MPIRUN();
+  expect_sweep_on_ranks_as_on_one(test_ranks(), 2);
+}
+
+// Nothing assumes two ranks: four (more than this machine's cores) write the same.
+TEST(MpiSweep, FourRanksWriteWhatOneRankWrites) {
+  SKIP_WITHOUT_MPIRUN();
+  expect_sweep_on_ranks_as_on_one(4, 3);
 }
 
 TEST(MpiSweep, AFailingRunIsARowWithItsErrorAndTheOthersGoOn) {
@@ -117,7 +148,7 @@ TEST(MpiSweep, AFailingRunIsARowWithItsErrorAndTheOthersGoOn) {
   TempDir dir;
   write_file(dir / "p.yaml", "stages:\n  - id: c\n    plugin: test_counter\n    params: {check_ms: 100}\n"
                              "  - id: t\n    plugin: test_throwing\n    params: {fail_at: 1}\n");
-  const auto r = run_on_two_ranks({"sweep", (dir / "p.yaml").string(), "--vary", "t.fail_at=1,0,2,3", "--out",
+  const auto r = run_on_test_ranks({"sweep", (dir / "p.yaml").string(), "--vary", "t.fail_at=1,0,2,3", "--out",
                                    (dir / "sw").string(), "--accuracy", "c.value"},
                                   kTestPlugins);
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
@@ -154,7 +185,7 @@ TEST(MpiSweep, ResumeRunsOnlyWhatAStoppedSweepLeftOut) {
   write_file(dir / "half/sweep.csv", lines[0] + "\n" + lines[1] + "\n" + lines[2] + "\n" + lines[5] + "\n");
 
   const bool ranks = !mpirun().empty();
-  const auto rest = ranks ? run_on_two_ranks(sweep("half"), kTestPlugins) : run_cli(sweep("half"), kTestPlugins);
+  const auto rest = ranks ? run_on_test_ranks(sweep("half"), kTestPlugins) : run_cli(sweep("half"), kTestPlugins);
   ASSERT_EQ(rest.exit_code, 0) << rest.err;
   EXPECT_EQ(count(rest.err, "/6] "), 3u) << "only the 3 missing runs ran: " << rest.err;
   EXPECT_NE(rest.out.find("3 of them from before (--resume)"), std::string::npos) << rest.out;
@@ -184,7 +215,7 @@ TEST(MpiSweep, ARankThatDiesEndsTheJobNamingTheLostRunsAndResumeCompletesIt) {
     return a;
   };
   // Rank 1 gets a run while rank 0 runs the first one (0.3 s), and dies in it.
-  const auto killed = run_on_two_ranks(sweep(false), kTestPlugins + " TOUCHCLOUD_TEST_KILL_RANK=1");
+  const auto killed = run_on_test_ranks(sweep(false), kTestPlugins + " TOUCHCLOUD_TEST_KILL_RANK=1");
   EXPECT_NE(killed.exit_code, 0);
   EXPECT_NE(killed.err.find("touchcloud: error: stopped with "), std::string::npos) << killed.err;
   EXPECT_NE(killed.err.find("lost while running: setting "), std::string::npos) << killed.err;
@@ -200,8 +231,9 @@ TEST(MpiSweep, ARankThatDiesEndsTheJobNamingTheLostRunsAndResumeCompletesIt) {
   EXPECT_EQ(lines, 1u + 6);
 }
 
-TEST(MpiScore, TwoRanksPrintWhatOneRankPrints) {
-  SKIP_WITHOUT_MPIRUN();
+// `score` of 7 estimates (one unreadable) on `ranks` ranks prints what one
+// rank prints, every metric bit for bit.
+void expect_score_on_ranks_as_on_one(int ranks) {
   TempDir dir;
   // A 10 x 10 mm square (two triangles), sampled with a seed on every rank.
   write_file(dir / "square.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3\nf 1 3 4\n");
@@ -219,20 +251,31 @@ TEST(MpiScore, TwoRanksPrintWhatOneRankPrints) {
   write_file(dir / "empty.pcd", "");
   args.push_back((dir / "empty.pcd").string());  // fails on whichever rank gets it
   const auto one = run_cli(args);
-  const auto two = run_on_two_ranks(args);
+  const auto many = run_on_ranks(ranks, args);
   EXPECT_EQ(one.exit_code, 2) << one.err;
-  EXPECT_EQ(two.exit_code, 2) << two.err;
-  auto a = nlohmann::json::parse(one.out), b = nlohmann::json::parse(two.out);
+  EXPECT_EQ(many.exit_code, 2) << many.err;
+  auto a = nlohmann::json::parse(one.out), b = nlohmann::json::parse(many.out);
   ASSERT_EQ(a.size(), 7u);
-  std::set<int> ranks;
+  std::set<int> ranks_seen;
   for (auto* all : {&a, &b})
     for (auto& rec : *all) {
-      if (all == &b) ranks.insert(rec["rank"].get<int>());
+      if (all == &b) ranks_seen.insert(rec["rank"].get<int>());
       for (const char* key : {"time_s", "rank", "host"}) rec.erase(key);
       rec["ground_truth"].erase("load_time_s");
     }
   EXPECT_EQ(a.dump(1), b.dump(1));  // every metric, bit for bit
   EXPECT_EQ(a[6]["status"], "error");
-  EXPECT_EQ(ranks, (std::set<int>{0, 1}));
-  EXPECT_NE(two.err.find("1 of 7 estimates could not be scored"), std::string::npos) << two.err;
+  EXPECT_GE(ranks_seen.size(), 2u) << "7 estimates: more than one rank scored some";
+  EXPECT_LT(*ranks_seen.rbegin(), ranks);
+  EXPECT_NE(many.err.find("1 of 7 estimates could not be scored"), std::string::npos) << many.err;
+}
+
+TEST(MpiScore, TwoRanksPrintWhatOneRankPrints) {
+  SKIP_WITHOUT_MPIRUN();
+  expect_score_on_ranks_as_on_one(test_ranks());
+}
+
+TEST(MpiScore, FourRanksPrintWhatOneRankPrints) {
+  SKIP_WITHOUT_MPIRUN();
+  expect_score_on_ranks_as_on_one(4);
 }

@@ -2,6 +2,11 @@
 // in a log only when asked (--progress), quiet otherwise.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <functional>
+#include <regex>
+#include <thread>
+
 #include "counting_pipeline.hpp"
 #include "progress_line.hpp"
 #include "test_support.hpp"
@@ -20,6 +25,41 @@ TEST(ProgressLine, SaysDoneTotalRateAndTimeLeft) {
   EXPECT_EQ(progress_text(40, 1000, 10.0, "estimates"), "40/1000 estimates, 4 estimates/s, about 4 min left");
   EXPECT_EQ(progress_text(1, 1000, 30.0, "runs"), "1/1000 runs, 0.0333 runs/s, about 8.3 h left");
   EXPECT_EQ(progress_text(10, 10, 2.0, "runs"), "10/10 runs, 5 runs/s");
+  // A count that began part way (a resumed training run): the rate is of what was done since.
+  EXPECT_EQ(progress_text(7, 10, 4.0, "epochs", 5), "7/10 epochs, 0.5 epochs/s, about 6 s left");
+  EXPECT_EQ(progress_text(5, 10, 4.0, "epochs", 5), "5/10 epochs");
+}
+
+// A long stage's count follows the loop's, with its own rate; a new
+// iteration of the loop drops it; nothing counted prints nothing.
+TEST(ProgressLine, AStagesStepFollowsTheLoopsCount) {
+  using touchcloud::cli::ProgressLine;
+  const auto final_line = [](const std::function<void(ProgressLine&)>& feed) {
+    testing::internal::CaptureStderr();
+    {
+      ProgressLine line(0, "", true);
+      feed(line);
+      line.finish();
+    }
+    return testing::internal::GetCapturedStderr();
+  };
+  EXPECT_EQ(final_line([](ProgressLine&) {}), "");
+  EXPECT_EQ(final_line([](ProgressLine& l) { l.set_step("train", 0, 4, "epochs"); }), "progress: train: 0/4 epochs\n");
+  const std::string both = final_line([](ProgressLine& l) {
+    l.set(1, 3, "l iterations");
+    l.set_step("train", 0, 4, "epochs");
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    l.set_step("train", 2, 4, "epochs");
+  });
+  EXPECT_TRUE(std::regex_match(both, std::regex("progress: 1/3 l iterations, [0-9.e+]+ l iterations/s, about .* left; "
+                                                "train: 2/4 epochs, [0-9.e+]+ epochs/s, about .* left\n")))
+      << both;
+  EXPECT_EQ(final_line([](ProgressLine& l) {
+              l.set(1, 3, "l iterations");
+              l.set_step("train", 2, 4, "epochs");
+              l.set(2, 3, "l iterations");
+            }).find("train"),
+            std::string::npos);
 }
 
 TEST(ProgressLine, SweepShowsItInALogOnlyWhenAsked) {

@@ -5,6 +5,7 @@ import os
 import pathlib
 import re
 import shutil
+import statistics
 import subprocess
 
 import pytest
@@ -104,18 +105,37 @@ def test_out_naming_a_folder_is_exit_2(run_dir, tmp_path):
 
 
 def test_folder_of_runs_draws_every_runs_curve(run_dir, tmp_path):
-    for name in ("runs/setting0_seed1", "runs/setting1_seed1"):
+    for name in ("runs/setting0_seed1", "runs/setting10_seed1", "runs/setting2_seed1"):
         shutil.copytree(run_dir, tmp_path / name)
-    # The second run's curve differs: its summary says so.
-    s = json.loads((tmp_path / "runs/setting1_seed1/summary.json").read_text())
+    # One run's curve differs: its summary says so.
+    s = json.loads((tmp_path / "runs/setting10_seed1/summary.json").read_text())
     s["metrics"]["score.chamfer_est_to_gt"]["series"] = [2.0, 1.0]
-    (tmp_path / "runs/setting1_seed1/summary.json").write_text(json.dumps(s))
+    (tmp_path / "runs/setting10_seed1/summary.json").write_text(json.dumps(s))
     r = cli("report", tmp_path)
     assert r.returncode == 0, r.stderr
     data = embedded_data((tmp_path / "report.html").read_text())
+    # In the order of the numbers in their names; copies of one run (the same
+    # overrides and seed) are one setting, told apart by their folders.
     assert [(c["label"], len(c["series"])) for c in data["chamfer"]["curves"]] == [
-        ("runs/setting0_seed1", 6), ("runs/setting1_seed1", 2)]
-    assert data["folder_runs"] == 2
+        ("fox_mask_active, seed 1 (runs/setting0_seed1)", 6), ("fox_mask_active, seed 1 (runs/setting2_seed1)", 6),
+        ("fox_mask_active, seed 1 (runs/setting10_seed1)", 2)]
+    assert [(t["label"], t["curves"]) for t in data["settings"]] == [("fox_mask_active", [0, 1, 2])]
+    assert data["folder_runs"] == 3
+
+
+def test_runs_given_different_overrides_are_named_by_them(run_dir, tmp_path):
+    # Runs of one pipeline by hand, not a sweep: named by the --set values that differ.
+    for name, value in (("a", "0.9"), ("b", "3.6")):
+        shutil.copytree(run_dir, tmp_path / name)
+        s = json.loads((tmp_path / name / "summary.json").read_text())
+        s["overrides"].append({"key": "dedup.threshold_mm", "value": value, "origin": "--set"})
+        (tmp_path / name / "summary.json").write_text(json.dumps(s))
+    r = cli("report", tmp_path)
+    assert r.returncode == 0, r.stderr
+    data = embedded_data((tmp_path / "report.html").read_text())
+    assert [c["label"] for c in data["chamfer"]["curves"]] == ["dedup.threshold_mm=0.9, seed 1",
+                                                                "dedup.threshold_mm=3.6, seed 1"]
+    assert [t["label"] for t in data["settings"]] == ["dedup.threshold_mm=0.9", "dedup.threshold_mm=3.6"]
 
 
 def test_image_outputs_are_embedded_and_missing_ones_named(run_dir, tmp_path):
@@ -137,52 +157,138 @@ def test_image_outputs_are_embedded_and_missing_ones_named(run_dir, tmp_path):
     assert data["missing"] == ["image gone.png: not found"]
 
 
-def test_sweep_report_has_each_runs_curve_and_time(tmp_path):
-    out = tmp_path / "sweep"
-    r = cli("sweep", "pipelines/fox_mask_active.yaml", "--vary", "explore.max_iterations=4,5",
+@pytest.fixture(scope="module")
+def sweep_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("sweep") / "sweep"
+    r = cli("sweep", "pipelines/fox_mask_active.yaml", "--vary", "explore.max_iterations=4,5", "--repeats", "2",
             "--set", "surface.resolution=[60, 60]", "--out", out, "--report")
     assert r.returncode == 0, r.stderr
     assert f"wrote {out / 'report.html'}" in r.stdout
-    data = embedded_data((out / "report.html").read_text())
+    return out
+
+
+def test_sweep_report_has_a_panel_per_setting_named_by_the_values_varied(sweep_dir):
+    data = embedded_data((sweep_dir / "report.html").read_text())
     curves = data["chamfer"]["curves"]
-    assert [(c["label"], len(c["series"])) for c in curves] == [("runs/setting0_seed0", 4), ("runs/setting1_seed0", 5)]
+    assert [(c["label"], c["folder"], len(c["series"])) for c in curves] == [
+        ("explore.max_iterations=4, seed 0", "runs/setting0_seed0", 4),
+        ("explore.max_iterations=4, seed 1", "runs/setting0_seed1", 4),
+        ("explore.max_iterations=5, seed 0", "runs/setting1_seed0", 5),
+        ("explore.max_iterations=5, seed 1", "runs/setting1_seed1", 5)]
     for c in curves:
-        summary = json.loads((out / c["label"] / "summary.json").read_text())
+        summary = json.loads((sweep_dir / c["folder"] / "summary.json").read_text())
+        assert c["series"] == summary["metrics"]["score.chamfer_est_to_gt"]["series"]
         assert c["final"] == summary["metrics"]["score.chamfer_est_to_gt"]["value"]
         assert c["wall_time_s"] == summary["wall_time_s"]
+    assert curves[0]["series"] != curves[1]["series"], "the seeds' curves differ"
+    # Each setting: its repeats, their final chamfer and wall time.
+    assert [(t["label"], t["curves"]) for t in data["settings"]] == [
+        ("explore.max_iterations=4", [0, 1]), ("explore.max_iterations=5", [2, 3])]
+    for t in data["settings"]:
+        finals = [curves[i]["final"] for i in t["curves"]]
+        times = [curves[i]["wall_time_s"] for i in t["curves"]]
+        assert t["final"]["n"] == 2 and t["final"]["mean"] == pytest.approx(statistics.fmean(finals), rel=1e-12)
+        assert t["final"]["sd"] == pytest.approx(statistics.stdev(finals), rel=1e-9)
+        assert (t["final"]["min"], t["final"]["max"]) == (min(finals), max(finals))
+        assert t["wall_time_s"]["mean"] == pytest.approx(statistics.fmean(times), rel=1e-12)
+    assert data["run"]["label"] == "explore.max_iterations=4, seed 0"
 
 
-def chromium(*args):
+def chromium(*args, size=(1200, 1300)):
     return subprocess.run([CHROMIUM, "--headless=new", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-                           "--hide-scrollbars", "--window-size=1200,1300", *args],
+                           "--hide-scrollbars", f"--window-size={size[0]},{size[1]}", *args],
                           capture_output=True, text=True, timeout=60)
 
 
-@pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (scripts/install-deps.sh installs it): "
-                                             "the report is not checked in a browser")
-def test_report_draws_in_a_real_browser(run_dir, tmp_path):
+needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (scripts/install-deps.sh "
+                                                               "installs it): the report is not checked in a browser")
+
+
+def check_in_browser(report, tmp_path, expected, looked_at=None):
+    """Opens `report` in headless Chromium: no JavaScript error or failed
+    resource, the drawings `expected` (and no others) finished, and each of
+    them (or of `looked_at`) drawn, not blank, in a screenshot of the whole
+    page."""
     import numpy as np
     import matplotlib.image
-    url = (run_dir / "report.html").as_uri()
+    url = report.as_uri()
     dom = chromium("--dump-dom", url)
     assert dom.returncode == 0, dom.stderr
     errors = re.search(r'<pre id="tc-errors"[^>]*>(.*?)</pre>', dom.stdout, re.S)
     assert errors and errors.group(1).strip() == "", "JavaScript errors or failed resources: " + errors.group(1)
     status = re.search(r'<div id="tc-status" data-drawn="([^"]*)" data-rects="([^"]*)"', dom.stdout)
     assert status, "the page never finished drawing"
-    assert status.group(1) == "3d chamfer times"
+    assert sorted(status.group(1).split()) == sorted(expected)
     rects = json.loads(status.group(2).replace("&quot;", '"'))
+    # The page is 1200 px wide whatever the window; the window as tall as the drawings reach.
+    height = max(1300, max(y + h for x, y, w, h in rects.values()) + 20)
     png = tmp_path / "report.png"
-    shot = chromium("--screenshot=" + str(png), url)
+    shot = chromium("--screenshot=" + str(png), url, size=(1200, height))
     assert shot.returncode == 0 and png.exists(), shot.stderr
     image = (matplotlib.image.imread(str(png))[..., :3] * 255).round().astype(np.int32)
-    assert image.shape[:2] == (1300, 1200)
+    assert image.shape[:2] == (height, 1200)
     for name, (x, y, w, h) in rects.items():
+        if looked_at is not None and name not in looked_at:
+            continue
         assert w > 100 and h > 100 and y + h <= image.shape[0] and x + w <= image.shape[1], (name, rects)
         region = image[y:y + h, x:x + w].reshape(-1, 3)
         background = np.median(region, axis=0)
         drawn = np.abs(region - background).max(axis=1) > 40
         colours = len(np.unique(region[drawn], axis=0))
-        # Drawn: a few percent of the region's pixels off the background, in many colours.
-        assert drawn.mean() > (0.05 if name == "3d" else 0.01), (name, drawn.mean())
+        # Drawn: the 3D view and pictures a few percent of their pixels off the background, in
+        # many colours; a plot's marks (its area only: axes and labels lie outside it) a few
+        # hundred pixels (the 4 points and the front of a 4-run Pareto plot: 0.17 to 0.6 %, fewer
+        # where a loaded machine's wall times put points on top of each other; blank: 0).
+        least = 0.05 if name == "3d" else 0.01 if name.startswith("image") else 0.0005
+        assert drawn.mean() > least, (name, drawn.mean())
         assert colours >= (200 if name == "3d" else 2), (name, colours)
+    return dom.stdout
+
+
+@needs_chromium
+def test_report_draws_in_a_real_browser(run_dir, tmp_path):
+    check_in_browser(run_dir / "report.html", tmp_path, ["3d", "chamfer", "times"])
+
+
+@needs_chromium
+def test_sweep_report_draws_each_settings_panel_in_a_real_browser(sweep_dir, tmp_path):
+    dom = check_in_browser(sweep_dir / "report.html", tmp_path,
+                           ["3d", "chamfer", "times", "pareto", "setting0", "setting1"])
+    assert "<h3>explore.max_iterations=4</h3>" in dom and "<h3>explore.max_iterations=5</h3>" in dom
+
+
+# The shipped sensing pipelines' pictures: the file, its caption, and the picture in the page.
+PICTURES = {
+    "simulate_touch_gelsight": ("height.png", "Height (mm) estimated (left) beside the ground truth (right), on one "
+                                              "colour scale from 0 to "),
+    "simulate_touch_images": ("markers.png", "Left and right images of frame "),
+}
+
+
+@pytest.fixture(scope="module", params=sorted(PICTURES))
+def sensing_dir(request, tmp_path_factory):
+    out = tmp_path_factory.mktemp("sensing") / request.param
+    r = cli("run", f"pipelines/{request.param}.yaml", "--seed", "1", "--out", out, "-q", "--report")
+    assert r.returncode == 0, r.stderr
+    return out
+
+
+def test_sensing_pipelines_pictures_are_in_the_report_with_their_captions(sensing_dir):
+    import base64
+    name, caption = PICTURES[sensing_dir.name]
+    summary = json.loads((sensing_dir / "summary.json").read_text())
+    assert name in summary["outputs"]
+    (image,) = embedded_data((sensing_dir / "report.html").read_text())["images"]
+    assert (image["name"], image["mime"]) == (name, "image/png")
+    assert image["caption"].startswith(caption), image["caption"]
+    assert image["caption"] == summary["notes"]["picture.caption"]
+    assert base64.b64decode(image["base64"]) == (sensing_dir / name).read_bytes()
+
+
+# One pipeline's page in the browser (a picture loads as a picture); both pages' data are checked above.
+@needs_chromium
+@pytest.mark.parametrize("sensing_dir", ["simulate_touch_images"], indirect=True)
+def test_sensing_pictures_load_in_a_real_browser(sensing_dir, tmp_path):
+    name, caption = PICTURES[sensing_dir.name]
+    dom = check_in_browser(sensing_dir / "report.html", tmp_path, ["3d", "times", "image0"], looked_at=["image0"])
+    assert re.search(r"<figcaption>" + re.escape(caption) + r"[^<]*\(" + re.escape(name) + r"\)</figcaption>", dom)

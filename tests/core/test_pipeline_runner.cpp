@@ -1,4 +1,6 @@
 // Running pipelines: order, loops, @previous, seeds, failures and outputs.
+#include <tuple>
+
 #include <nlohmann/json.hpp>
 
 #include "pipeline_fixture.hpp"
@@ -190,6 +192,20 @@ TEST_F(PipelineRunner, SummaryRecordsParametersSeedVersionsTimesAndMetrics) {
   EXPECT_EQ(j["metrics"]["c.value"]["series"], nlohmann::json::array({0.5, 1.0, 1.5}));
   EXPECT_EQ(j["metrics"]["c.value"]["value"], 1.5);
   EXPECT_FALSE(fs::exists(out / (".touchcloud-staging-" + std::to_string(::getpid()))));
+  EXPECT_EQ(j["overrides"], nlohmann::json::array());
+}
+
+// The overrides a run was given are recorded as given, with where they came
+// from (a report labels a sweep's runs by its --vary ones).
+TEST_F(PipelineRunner, SummaryRecordsTheOverridesAsGiven) {
+  Pipeline p = load("stages:\n  - id: c\n    plugin: test_counter\n",
+                    {{"c.step", "0.25"}, {"c.offsets", "[1,  2]", "--vary"}});
+  RunOptions o;
+  o.quiet = true;
+  const auto j = nlohmann::json::parse(run_pipeline(p, o).summary_json);
+  EXPECT_EQ(j["overrides"], nlohmann::json::parse(R"([{"key": "c.step", "value": "0.25", "origin": "--set"},
+                                                      {"key": "c.offsets", "value": "[1,  2]", "origin": "--vary"}])"));
+  EXPECT_EQ(j["stages"][0]["params"]["step"], 0.25);
 }
 
 // A stage's checks run at load (a scorer reads its ground-truth file
@@ -226,4 +242,34 @@ TEST_F(PipelineRunner, SummaryRecordsTheValueUsedForAParameterLeftNotSet) {
   EXPECT_EQ(params["workspace_x_mm"], nlohmann::json::array({-60.0, 60.0}));
   EXPECT_EQ(params["workspace_y_mm"], nlohmann::json::array({0.0, 12.0}));
   EXPECT_TRUE(j["versions"].contains("eigen")) << "recorded by the sensing library, not the runtime";
+}
+
+// A stage's progress within one call (a trainer's epochs) reaches whoever
+// runs it; an impossible count is a bug in the stage, reported as such.
+TEST(RunContextProgress, ReachesTheRunnersCallbackAndRefusesImpossibleCounts) {
+  RunRecord record;
+  std::vector<std::string> seen;
+  RunSettings settings;
+  settings.on_progress = [&](const std::string& stage, std::int64_t done, std::int64_t total, const std::string& unit) {
+    seen.push_back(stage + " " + std::to_string(done) + "/" + std::to_string(total) + " " + unit);
+  };
+  const RunContext ctx("train", 0, record, settings);
+  ctx.progress(0, 3, "epochs");
+  ctx.progress(3, 3, "epochs");
+  EXPECT_EQ(seen, (std::vector<std::string>{"train 0/3 epochs", "train 3/3 epochs"}));
+  for (const auto& [done, total, unit] : std::vector<std::tuple<std::int64_t, std::int64_t, std::string>>{
+           {4, 3, "epochs"}, {-1, 3, "epochs"}, {0, 0, "epochs"}, {1, 3, ""}}) {
+    try {
+      ctx.progress(done, total, unit);
+      ADD_FAILURE() << done << "/" << total << " '" << unit << "' was taken";
+    } catch (const RunError& e) {
+      EXPECT_NE(std::string(e.what()).find("stage 'train' reported progress " + std::to_string(done) + "/" +
+                                           std::to_string(total)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(seen.size(), 2u);
+  // Nobody listening (a sweep's runs, the Python module): nothing happens.
+  RunContext("quiet", 0, record).progress(1, 2, "epochs");
 }

@@ -86,6 +86,10 @@ struct RunOptions {
   // Called after each iteration of a top-level loop: its id, the iterations
   // run so far and its budget (the run's progress).
   std::function<void(const std::string& loop, std::int64_t done, std::int64_t budget)> on_loop_iteration;
+  // Where a stage stands within one long call (RunContext::progress: a
+  // training stage's epochs); called from the stage's thread.
+  std::function<void(const std::string& stage, std::int64_t done, std::int64_t total, const std::string& unit)>
+      on_stage_progress;
 };
 
 struct StageTiming {

@@ -40,6 +40,10 @@ struct RunSettings {
   // Where log lines go (each whole, with its newline; called from any
   // stage's thread, one at a time); empty: std::clog.
   std::function<void(const std::string& line)> log_sink;
+  // Where a stage's progress within one call goes (RunContext::progress;
+  // called from the stage's thread); empty: nowhere.
+  std::function<void(const std::string& stage, std::int64_t done, std::int64_t total, const std::string& unit)>
+      on_progress;
 };
 
 class RunContext {
@@ -70,6 +74,10 @@ class RunContext {
   // file appears in the output folder only when the whole run succeeds.
   std::filesystem::path output_path(const std::string& file_name);
   void log(const std::string& message) const;
+  // How far a long call has come: `done` of `total` `unit`s ("epochs"), for
+  // a progress line (rate, time left). Report the start (done 0) too, so the
+  // rate counts from it. RunError unless 0 <= done <= total and total > 0.
+  void progress(std::int64_t done, std::int64_t total, const std::string& unit) const;
 
  private:
   std::string stage_id_;

@@ -79,6 +79,18 @@ TEST_F(TrainTiny, WritesTheCheckpointAndCurveTheSameForTheSameSeedAndResumes) {
   EXPECT_NE(read_file(dir_.path() / "c" / "gs_depthnet.ckpt").find("train epochs_done 3\n"), std::string::npos);
 }
 
+// The epochs as the run's progress: one line at the end in a log when asked
+// (--progress), nothing otherwise (a terminal redraws it in place).
+TEST_F(TrainTiny, ShowsItsEpochsAsProgressOnlyWhenAsked) {
+  const auto quiet = run(pipeline(), "quiet");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("progress:"), std::string::npos) << quiet.err;
+  const auto shown = run(pipeline(), "shown", {"--progress"});
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  EXPECT_NE(shown.err.find("progress: train: 2/2 epochs, "), std::string::npos) << shown.err;
+  EXPECT_NE(shown.err.find(" epochs/s\n"), std::string::npos) << shown.err;
+}
+
 TEST_F(TrainTiny, EachLossTermSwitchesOff) {
   const auto r = run(pipeline(", lr_loss: false, se_loss: false"), "off", {"--set", "train.epochs=1"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

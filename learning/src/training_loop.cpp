@@ -104,4 +104,10 @@ std::string curve_png(const std::vector<EpochRecord>& records, const std::vector
   return std::string(bytes.begin(), bytes.end());
 }
 
+std::string epoch_line(const EpochRecord& r, int epochs) {
+  std::string line = "epoch " + std::to_string(r.epoch + 1) + "/" + std::to_string(epochs) + ": ";
+  for (const auto& [name, v] : r.values) line += name + " " + number_text(std::round(v * 1e5) / 1e5) + ", ";
+  return line + "lr " + number_text(r.learning_rate) + ", " + number_text(std::round(r.seconds * 10) / 10) + " s";
+}
+
 }  // namespace touchcloud::learning

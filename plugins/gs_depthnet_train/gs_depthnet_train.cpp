@@ -307,9 +307,7 @@ class GsDepthNetTrain final : public Stage {
       return values;
     };
     loop.after_epoch = [&](const lrn::EpochRecord& r) {
-      std::string line = "epoch " + std::to_string(r.epoch + 1) + "/" + std::to_string(epochs_) + ": ";
-      for (const auto& [name, v] : r.values) line += name + " " + number_text(std::round(v * 1e5) / 1e5) + ", ";
-      ctx.log(line + "lr " + number_text(r.learning_rate) + ", " + number_text(std::round(r.seconds * 10) / 10) + " s");
+      ctx.log(lrn::epoch_line(r, epochs_));
       ctx.progress(r.epoch + 1, epochs_, "epochs");
     };
     ctx.progress(std::min(first_epoch, epochs_), epochs_, "epochs");  // a resumed run may be done already

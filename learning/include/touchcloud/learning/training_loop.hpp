@@ -34,6 +34,10 @@ struct EpochRecord {
   double value(const std::string& name) const;         // NaN when absent
 };
 
+// The log line of an epoch: "epoch 3/20: loss 0.123, ..., lr 0.001, 41.2 s"
+// (values to 5 decimals, seconds to 0.1).
+std::string epoch_line(const EpochRecord& record, int epochs);
+
 struct TrainingLoop {
   LearningRateSchedule schedule;
   int first_epoch = 0;  // > 0 when resuming

@@ -40,6 +40,7 @@ class GsDepthNetTrain final : public Stage {
   lrn::GsDepthNetShape shape_;
   enum class ContactMasks { RestPair, Dataset };
   ContactMasks contact_masks_ = ContactMasks::RestPair;
+  bool save_optimizer_ = true;
   contact_mask::ContactRegionOptions contact_;
   stereo_disparity::MatcherOptions reference_matcher_;
   // Read at check.
@@ -102,6 +103,9 @@ class GsDepthNetTrain final : public Stage {
     p.add("checkpoint", checkpoint_, std::string("gs_depthnet.ckpt")).output_file().doc("checkpoint file written");
     p.add("curve_csv", curve_csv_, std::string("training_curve.csv")).output_file().doc("loss terms and metrics per epoch");
     p.add("curve_png", curve_png_, std::string("training_curve.png")).output_file().doc("plot of the training curve");
+    p.add("save_optimizer", save_optimizer_, true)
+        .doc("write Adam's state into the checkpoint (needed to resume from it; false: weights only, about a "
+             "third of the file, for a shipped model)");
     p.add("resume_from", resume_from_).input_file()
         .doc("checkpoint to continue from (weights, optimiser state, epochs done); must be of the same network");
     p.add("threads", threads_, 2).range(1, 256).doc("libtorch's intra-op threads");
@@ -327,9 +331,8 @@ class GsDepthNetTrain final : public Stage {
                                  weights_.appearance_resolution == lrn::AppearanceResolution::Input ? "input" : "scale"}};
     if (!records.empty())
       for (const auto& [name, v] : records.back().values) c.header.training_fields.emplace_back(name, number_text(v));
-    c.blobs = {{"weights", lrn::module_bytes(*net)},
-               {"optimizer", lrn::optimizer_bytes(adam)},
-               {"rest_disparity", reference.bytes()}};
+    c.blobs = {{"weights", lrn::module_bytes(*net)}, {"rest_disparity", reference.bytes()}};
+    if (save_optimizer_) c.blobs.emplace_back("optimizer", lrn::optimizer_bytes(adam));
     write_file(ctx.output_path(checkpoint_), lrn::checkpoint_bytes(c));
     write_file(ctx.output_path(curve_csv_), lrn::curve_csv(records));
     write_file(ctx.output_path(curve_png_),

@@ -153,6 +153,23 @@ TEST_F(TrainTiny, ResumingFromAnotherNetworkIsRefusedNamingBoth) {
   EXPECT_TRUE(nothing_in("out"));
 }
 
+// save_optimizer: false writes the weights alone (a shipped model); resuming
+// from such a file is refused, naming it and the missing state.
+TEST_F(TrainTiny, AWeightsOnlyCheckpointIsSmallerAndCannotBeResumed) {
+  ASSERT_EQ(run(pipeline(), "full", {"--set", "train.epochs=1"}).exit_code, 0);
+  ASSERT_EQ(run(pipeline(), "light", {"--set", "train.epochs=1", "--set", "train.save_optimizer=false"}).exit_code, 0);
+  const std::string full = read_file(dir_.path() / "full" / "gs_depthnet.ckpt");
+  const std::string light = read_file(dir_.path() / "light" / "gs_depthnet.ckpt");
+  EXPECT_NE(full.find("\nblob optimizer "), std::string::npos);
+  EXPECT_EQ(light.find("\nblob optimizer "), std::string::npos);
+  EXPECT_LT(light.size(), full.size());
+  const auto r = run(pipeline(), "out", {"--set", "train.epochs=2", "--set",
+                                         "train.resume_from=" + (dir_.path() / "light" / "gs_depthnet.ckpt").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("optimizer"), std::string::npos) << r.err;
+  EXPECT_TRUE(nothing_in("out"));
+}
+
 TEST_F(TrainTiny, ContactMasksComeFromTheRestPairOrFromTheDatasetsOwnFiles) {
   tiny::write(dir_.path() / "bare", 2, 32, /*with_masks=*/false);
   const std::string index = "train.index=" + (dir_.path() / "bare" / "index.csv").string();

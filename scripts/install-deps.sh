@@ -4,7 +4,7 @@
 # present; needs root (or sudo) otherwise.
 set -euo pipefail
 packages=(
-  cmake ninja-build g++ pkg-config python3
+  cmake ninja-build g++ lld pkg-config python3
   libeigen3-dev libpcl-dev libopencv-dev libboost-dev libboost-filesystem-dev
   libyaml-cpp-dev libceres-dev libflann-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev libopenblas-dev libsleef-dev
   libgtest-dev libbenchmark-dev

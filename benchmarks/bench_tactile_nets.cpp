@@ -9,6 +9,7 @@
 
 #include "gelsight_simulation.hpp"
 #include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/tactile_nets.hpp"
 #include "touchcloud/learning/torch_io.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
@@ -45,6 +46,7 @@ void TactileNetsInference(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const int contact_width = static_cast<int>(state.range(1)), depth_width = static_cast<int>(state.range(2));
   torch::set_num_threads(threads);
+  lrn::keep_freed_memory_for_reuse();  // as the tactile_nets stage does
   torch::manual_seed(1);
   lrn::ContactNet contact(shape(lrn::TactileNet::Contact, contact_width));
   lrn::TactileDepthNet depth(shape(lrn::TactileNet::Depth, depth_width));

@@ -5,7 +5,12 @@ Run as `python3 mpi_launch.py FOLDER` on every rank of an mpirun job (what
 run_each does), it runs the commands of FOLDER/commands.json: each rank takes
 the next command no rank has taken yet (an exclusive file in FOLDER, which
 every rank must see) and records each one's exit status and stderr in
-FOLDER/result-I.json."""
+FOLDER/result-I.json.
+
+`python3 mpi_launch.py --ranks N COMMANDS.json` is run_each for programs
+that are not Python (a JSON list of commands, each a list of arguments; the
+job's folder beside the file): it prints each failure's command, status and
+stderr, and exits 1 if any failed."""
 import json
 import os
 import subprocess
@@ -70,5 +75,20 @@ def _run_claimed(folder):
         os.rename(tmp, os.path.join(folder, f"result-{i}.json"))
 
 
+def _main(argv):
+    if len(argv) == 3 and argv[0] == "--ranks":
+        with open(argv[2]) as f:
+            commands = json.load(f)
+        failed = run_each(commands, int(argv[1]), os.path.dirname(os.path.abspath(argv[2])))
+        for command, status, stderr in failed:
+            print(f"mpi_launch: {' '.join(command)} failed ({status}):\n{stderr}", file=sys.stderr)
+        return 1 if failed else 0
+    if len(argv) == 1:
+        _run_claimed(argv[0])
+        return 0
+    print("usage: mpi_launch.py --ranks N COMMANDS.json | mpi_launch.py FOLDER (on each rank)", file=sys.stderr)
+    return 2
+
+
 if __name__ == "__main__":
-    _run_claimed(sys.argv[1])
+    sys.exit(_main(sys.argv[1:]))

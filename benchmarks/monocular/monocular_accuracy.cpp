@@ -10,7 +10,10 @@
 // bench_photometric_depth (one core), bench_tactile_nets (both, 1 and 2 threads).
 //
 //   build/benchmarks/bin/monocular_accuracy [--noise SIGMA_GREY] [--out benchmarks/monocular]
-//       [--contact-net FILE] [--depth-net FILE]
+//       [--contact-net FILE] [--depth-net FILE] [--ranks N]
+//
+// With --ranks N the five presses spread over one `mpirun -n N` job (this
+// program once per case, scripts/mpi_launch.py); the same table.
 //
 // writes results.md (and prints it).
 #include <cmath>
@@ -19,8 +22,14 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
+#include <memory>
+#include <optional>
 #include <sstream>
 
+#include <stdlib.h>
+
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "gelsight_simulation.hpp"
@@ -124,64 +133,152 @@ Scores score(const cv::Mat& height_mm, const cv::Mat& contact_mask, const Height
   return s;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  double noise = 0;
-  std::string out;
-  std::string contact_net = kSource + "/models/contact_net_w8.ckpt", depth_net = kSource + "/models/tactile_depthnet_w8.ckpt";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    if (key == "--noise") noise = std::stod(argv[i + 1]);
-    else if (key == "--out") out = argv[i + 1];
-    else if (key == "--contact-net") contact_net = argv[i + 1];
-    else if (key == "--depth-net") depth_net = argv[i + 1];
-    else {
-      std::cerr << "usage: monocular_accuracy [--noise SIGMA_GREY] [--out DIR] [--contact-net FILE] [--depth-net FILE]\n";
-      return 2;
-    }
-  }
-  const auto calibration =
-      sensor::load_photometric_calibration(kSource + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
+// What every case needs: the calibration, the networks, the scene.
+struct Setup {
+  sensor::PhotometricCalibration calibration;
 #ifdef TOUCHCLOUD_WITH_NETWORKS
-  torch::set_num_threads(1);  // accuracy only; one thread is fastest on a busy 2-core machine
-  learning::TactileNetPair nets(contact_net, depth_net);
+  std::unique_ptr<learning::TactileNetPair> nets;
 #endif
-  touch_simulator::Scene scene = touch_simulator::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml");
-  // Every press descends at 0.04 mm per frame from the first frame: no fast
-  // approach overshooting the press depth.
-  scene.robot.approach_speed_mm_s = 0;
-  if (noise > 0) {
-    scene.effects.add(touch_simulator::Effect::PixelNoise);
-    scene.effect_parameters.noise_sigma_grey = noise;
-  }
+  touch_simulator::Scene scene;
+};
+
+// The table's rows of one case: the press simulated and scored by each method.
+std::string case_rows(const Case& c, const Setup& setup) {
   std::ostringstream table;
   table << std::fixed << std::setprecision(3);
+  touch_simulator::GelSightSimulation sim(setup.scene, 1, c.object);
+  for (int i = 0; i < 100000; ++i)
+    if (sim.step(c.target, false).travel_past_contact_mm >= c.press_mm) break;
+  const cv::Mat image = sim.render().image, reference = sim.render_reference().image;
+  const HeightMap truth = sim.height_truth(0.05);
+  auto row = [&](const std::string& method, const Scores& s) {
+    table << "| " << c.name << " | " << c.press_mm << " | " << s.contact_px << " | " << method << " | " << s.rmse
+          << " | " << s.max_error << " | " << s.iou << " | " << s.f1 << " |\n";
+  };
+  for (auto border : {photometric::PoissonBorder::Zero, photometric::PoissonBorder::Free}) {
+    photometric::DepthOptions options;
+    options.border = border;
+    photometric::PhotometricDepthSolver solver(setup.calibration, options);
+    const photometric::DepthResult r = solver.solve(image, reference);
+    row(border == photometric::PoissonBorder::Zero ? "classical, zero border" : "classical, free border",
+        score(r.height_mm, r.contact_mask, truth));
+  }
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+  const learning::TactilePrediction p = setup.nets->predict(image, reference);
+  row("networks", score(p.height_mm, p.contact_probability > 0.5, truth));
+#endif
+  return table.str();
+}
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Every case's rows from one `mpirun -n RANKS` job (scripts/mpi_launch.py):
+// this program once per case, with --case I --rows FILE. Empty on failure.
+std::optional<std::vector<std::string>> rows_over_ranks(const char* self, int ranks, std::size_t count,
+                                                        const std::vector<std::string>& passed_on) {
+  std::string folder_template = (std::filesystem::temp_directory_path() / "monocular-XXXXXX").string();
+  if (!mkdtemp(folder_template.data())) {
+    std::cerr << "monocular_accuracy: cannot make a folder in " << std::filesystem::temp_directory_path() << "\n";
+    return std::nullopt;
+  }
+  const std::filesystem::path folder = folder_template;
+  nlohmann::json commands = nlohmann::json::array();
+  for (std::size_t i = 0; i < count; ++i) {
+    std::vector<std::string> command = {std::filesystem::absolute(self).string(), "--case", std::to_string(i),
+                                        "--rows", (folder / ("rows-" + std::to_string(i) + ".md")).string()};
+    command.insert(command.end(), passed_on.begin(), passed_on.end());
+    commands.push_back(command);
+  }
+  std::ofstream(folder / "commands.json") << commands.dump();
+  const std::string launch = "python3 '" + kSource + "/scripts/mpi_launch.py' --ranks " + std::to_string(ranks) +
+                             " '" + (folder / "commands.json").string() + "'";
+  std::optional<std::vector<std::string>> rows;
+  if (std::system(launch.c_str()) == 0) {
+    rows.emplace();
+    for (std::size_t i = 0; i < count; ++i)
+      rows->push_back(read_text(folder / ("rows-" + std::to_string(i) + ".md")));
+  }
+  std::filesystem::remove_all(folder);
+  return rows;
+}
+
+}  // namespace
+
+static int run(int argc, char** argv) {
+  const char* usage =
+      "usage: monocular_accuracy [--noise SIGMA_GREY] [--out DIR] [--contact-net FILE] [--depth-net FILE] "
+      "[--ranks N]\n";
+  double noise = 0;
+  int ranks = 1;
+  long only_case = -1;
+  std::string out, rows_file;
+  std::string contact_net = kSource + "/models/contact_net_w8.ckpt", depth_net = kSource + "/models/tactile_depthnet_w8.ckpt";
+  std::vector<std::string> passed_on;  // what every case's run needs again under --ranks
+  for (int i = 1; i < argc; i += 2) {
+    const std::string key = argv[i];
+    if (i + 1 >= argc) {
+      std::cerr << "monocular_accuracy: " << key << " needs a value\n" << usage;
+      return 2;
+    }
+    const std::string value = argv[i + 1];
+    if (key == "--noise") noise = std::stod(value);
+    else if (key == "--out") out = value;
+    else if (key == "--contact-net") contact_net = value;
+    else if (key == "--depth-net") depth_net = value;
+    else if (key == "--ranks") ranks = std::stoi(value);
+    else if (key == "--case") only_case = std::stol(value);  // one case's rows into --rows (what --ranks runs)
+    else if (key == "--rows") rows_file = value;
+    else {
+      std::cerr << usage;
+      return 2;
+    }
+    if (key == "--noise" || key == "--contact-net" || key == "--depth-net") passed_on.insert(passed_on.end(), {key, value});
+  }
+  const std::vector<Case> all = cases();
+  if (ranks < 1 || only_case >= static_cast<long>(all.size()) || (only_case >= 0) != !rows_file.empty()) {
+    std::cerr << "monocular_accuracy: --ranks must be >= 1, and --case (0-" << all.size() - 1
+              << ") comes with --rows\n" << usage;
+    return 2;
+  }
+  std::vector<std::string> rows;
+  if (ranks > 1) {
+    auto spread = rows_over_ranks(argv[0], ranks, all.size(), passed_on);
+    if (!spread) {
+      std::cerr << "monocular_accuracy: a case failed on the MPI ranks (above); nothing written\n";
+      return 1;
+    }
+    rows = std::move(*spread);
+  } else {
+    Setup setup{sensor::load_photometric_calibration(kSource + "/sample_clouds/gelsight_ball/photometric_calibration.yaml"),
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+                nullptr,
+#endif
+                touch_simulator::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml")};
+#ifdef TOUCHCLOUD_WITH_NETWORKS
+    torch::set_num_threads(1);  // accuracy only; one thread is fastest on a busy 2-core machine
+    setup.nets = std::make_unique<learning::TactileNetPair>(contact_net, depth_net);
+#endif
+    // Every press descends at 0.04 mm per frame from the first frame: no fast
+    // approach overshooting the press depth.
+    setup.scene.robot.approach_speed_mm_s = 0;
+    if (noise > 0) {
+      setup.scene.effects.add(touch_simulator::Effect::PixelNoise);
+      setup.scene.effect_parameters.noise_sigma_grey = noise;
+    }
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (only_case < 0 || static_cast<long>(i) == only_case) rows.push_back(case_rows(all[i], setup));
+    if (only_case >= 0) {
+      std::ofstream(rows_file) << rows.front();
+      return 0;
+    }
+  }
+  std::ostringstream table;
   table << "| object | press (mm) | contact px | method | height RMSE (mm) | max error (mm) | contact IoU | contact F1 |\n"
         << "|---|---|---|---|---|---|---|---|\n";
-  for (const Case& c : cases()) {
-    touch_simulator::GelSightSimulation sim(scene, 1, c.object);
-    for (int i = 0; i < 100000; ++i)
-      if (sim.step(c.target, false).travel_past_contact_mm >= c.press_mm) break;
-    const cv::Mat image = sim.render().image, reference = sim.render_reference().image;
-    const HeightMap truth = sim.height_truth(0.05);
-    auto row = [&](const std::string& method, const Scores& s) {
-      table << "| " << c.name << " | " << c.press_mm << " | " << s.contact_px << " | " << method << " | " << s.rmse
-            << " | " << s.max_error << " | " << s.iou << " | " << s.f1 << " |\n";
-    };
-    for (auto border : {photometric::PoissonBorder::Zero, photometric::PoissonBorder::Free}) {
-      photometric::DepthOptions options;
-      options.border = border;
-      photometric::PhotometricDepthSolver solver(calibration, options);
-      const photometric::DepthResult r = solver.solve(image, reference);
-      row(border == photometric::PoissonBorder::Zero ? "classical, zero border" : "classical, free border",
-          score(r.height_mm, r.contact_mask, truth));
-    }
-#ifdef TOUCHCLOUD_WITH_NETWORKS
-    const learning::TactilePrediction p = nets.predict(image, reference);
-    row("networks", score(p.height_mm, p.contact_probability > 0.5, truth));
-#endif
-  }
+  for (const std::string& r : rows) table << r;
   std::ostringstream text;
   text << "# Classical depth (photometric_depth) and seed 001's networks on held-out presses\n\n"
        << "Simulated GelSight Mini-like sensor (320 x 240 px, 0.06 mm/px), calibration from nine presses of a 4 mm "
@@ -202,4 +299,13 @@ int main(int argc, char** argv) {
     std::cout << "wrote " << file << "\n";
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // a missing checkpoint or calibration, a bad number
+    std::cerr << "monocular_accuracy: " << e.what() << "\n";
+    return 1;
+  }
 }

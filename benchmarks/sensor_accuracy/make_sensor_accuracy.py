@@ -15,7 +15,8 @@ fails: the mean over both objects within TOLERANCE_MM of 0.3 mm, and each
 object's within OBJECT_TOLERANCE_MM.
 
 Usage (from the repository root, after building):
-  benchmarks/sensor_accuracy/make_sensor_accuracy.py --out benchmarks/sensor_accuracy
+  benchmarks/sensor_accuracy/make_sensor_accuracy.py --out benchmarks/sensor_accuracy [--ranks N]
+With --ranks N the 20 presses spread over one `mpirun -n N` job.
 """
 import argparse
 import csv
@@ -25,6 +26,9 @@ import statistics
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from mpi_launch import run_each  # noqa: E402
 
 PAPER_ACCURACY_MM = 0.3        # the paper's "reconstruction accuracy of 0.3 mm"
 TOLERANCE_MM = 0.1             # on the mean over both objects
@@ -38,15 +42,17 @@ TARGETS = [(0, 0), (4, 3), (-5, 2), (3, -6), (-2, -4)]
 
 
 def press(args, obj, sensor, seed, target, workdir):
+    """The press's `touchcloud run` command and its output folder."""
     out = os.path.join(workdir, f"{obj}-{sensor}-{seed}")
     scene, sensor_file = OBJECTS[obj], SENSORS[sensor]
     cmd = [args.touchcloud, "run", "benchmarks/sensor_accuracy/press.yaml", "--seed", str(seed), "--out", out, "-q"]
     for o in [f"sim.scene={scene}", f"score.scene={scene}", f"score_truth.scene={scene}",
               f"sim.target_xy_mm=[{target[0]}, {target[1]}]", f"match.sensor={sensor_file}", f"rsrt.sensor={sensor_file}"]:
         cmd += ["--set", o]
-    done = subprocess.run(cmd, capture_output=True, text=True)
-    if done.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
+    return cmd, out
+
+
+def press_row(obj, sensor, seed, target, out):
     with open(os.path.join(out, "summary.json")) as f:
         m = json.load(f)["metrics"]
     return {"object": obj, "sensor": sensor, "seed": seed, "target": target,
@@ -56,25 +62,44 @@ def press(args, obj, sensor, seed, target, workdir):
             "points": int(m["salient.salient_points"]["value"])}
 
 
+def run_presses(commands, ranks, workdir):
+    """Runs every press: one after the other, or spread over one `mpirun -n
+    RANKS` job (scripts/mpi_launch.py); the rows do not depend on which."""
+    if ranks > 1:
+        failed = run_each(commands, ranks, workdir)
+        if failed:
+            cmd, status, stderr = failed[0]
+            raise RuntimeError(f"{len(failed)} presses failed; {' '.join(cmd)} ({status}):\n{stderr}")
+        return
+    for i, cmd in enumerate(commands, 1):
+        done = subprocess.run(cmd, capture_output=True, text=True)
+        if done.returncode != 0:
+            raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
+        print(f"\r{i}/{len(commands)} presses", end="", file=sys.stderr, flush=True)
+    print(file=sys.stderr)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--touchcloud", default="build/bin/touchcloud")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--ranks", type=int, default=1,
+                    help="MPI ranks to spread the presses over (mpirun -n N); the same results")
     args = ap.parse_args()
     if not os.path.exists(args.touchcloud):
         sys.exit(f"make_sensor_accuracy: no {args.touchcloud}; build first (scripts/build.sh)")
     os.makedirs(args.out, exist_ok=True)
     with open(SENSORS["calibrated"]) as f:
         calibration_line = next((l[2:].strip().split("; ")[0] for l in f if l.startswith("# Mean corner-distance error")), "")
-    rows = []
     with tempfile.TemporaryDirectory(prefix="sensor-accuracy-") as workdir:
-        for obj in OBJECTS:
-            for sensor in SENSORS:
-                for seed, target in enumerate(TARGETS, 1):
-                    rows.append(press(args, obj, sensor, seed, target, workdir))
-                    print(f"\r{len(rows)}/{len(OBJECTS) * len(SENSORS) * len(TARGETS)} presses", end="",
-                          file=sys.stderr, flush=True)
-    print(file=sys.stderr)
+        presses = [(obj, sensor, seed, target) for obj in OBJECTS for sensor in SENSORS
+                   for seed, target in enumerate(TARGETS, 1)]
+        runs = [press(args, *p, workdir) for p in presses]
+        try:
+            run_presses([cmd for cmd, _ in runs], args.ranks, workdir)
+        except RuntimeError as e:
+            sys.exit(f"make_sensor_accuracy: {e}")
+        rows = [press_row(*p, out) for p, (_, out) in zip(presses, runs)]
 
     with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
         w = csv.writer(f)

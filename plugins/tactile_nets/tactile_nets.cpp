@@ -6,6 +6,7 @@
 // sizes, and images of another size, type or sensor than they were trained on.
 #include <optional>
 
+#include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/tactile_net_pair.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/height_map.hpp"
@@ -59,6 +60,7 @@ class TactileNets final : public Stage {
 
   void on_configure(RunContext& ctx) override {
     torch::set_num_threads(threads_);
+    lrn::keep_freed_memory_for_reuse();  // a frame's activations are not faulted in again
     ctx.used("threads", static_cast<std::int64_t>(torch::get_num_threads()));
     try {
       nets_.emplace(contact_checkpoint_, depth_checkpoint_);

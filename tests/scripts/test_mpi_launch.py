@@ -35,3 +35,25 @@ def test_each_command_runs_once_and_failures_come_back(tmp_path):
         ranks.add(int(lines[0]))
     assert len(ranks) > 1 and ranks <= {0, 1, 2, 3}, ranks
     assert os.listdir(tmp_path / "jobs") == [], "the job's bookkeeping is removed"
+
+
+@needs_mpirun
+def test_the_command_line_runs_a_json_list_and_names_what_failed(tmp_path):
+    import json
+    import subprocess
+    outputs = [tmp_path / f"run{i}.txt" for i in range(3)]
+    commands = [[sys.executable, "-c", APPEND_RANK, str(out)] for out in outputs]
+    (tmp_path / "commands.json").write_text(json.dumps(commands))
+    launcher = os.path.join(os.path.dirname(sys.modules["mpi_launch"].__file__), "mpi_launch.py")
+    done = subprocess.run([sys.executable, launcher, "--ranks", "2", str(tmp_path / "commands.json")],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert all(len(out.read_text().splitlines()) == 1 for out in outputs)
+
+    commands.append(["sh", "-c", "echo 'no such press' >&2; exit 3"])
+    (tmp_path / "commands.json").write_text(json.dumps(commands))
+    done = subprocess.run([sys.executable, launcher, "--ranks", "2", str(tmp_path / "commands.json")],
+                          capture_output=True, text=True)
+    assert done.returncode == 1
+    assert "exit 3" in done.stderr and "failed (3)" in done.stderr and "no such press" in done.stderr
+    assert sorted(os.listdir(tmp_path)) == ["commands.json"] + [out.name for out in outputs], "bookkeeping removed"

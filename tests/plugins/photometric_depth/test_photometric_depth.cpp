@@ -40,6 +40,24 @@ TEST(DstPoisson, RecoversAKnownHeightMapFromItsExactGradients) {
   EXPECT_THROW(photometric::DstPoisson(2, 10), std::invalid_argument);
 }
 
+// The row transforms and the column systems at their smallest: one interior
+// row, one interior column, and a 240-row image's prime-length case above.
+TEST(DstPoisson, RecoversExactGradientsAtTheSmallestSizes) {
+  for (const auto& [w, h] : {std::pair{3, 3}, std::pair{7, 3}, std::pair{3, 7}, std::pair{5, 4}}) {
+    cv::Mat height = cv::Mat::zeros(h, w, CV_64FC1);
+    for (int v = 1; v + 1 < h; ++v)
+      for (int u = 1; u + 1 < w; ++u) height.at<double>(v, u) = 0.3 * u - 0.2 * v + 0.1 * u * v;
+    cv::Mat p(h, w - 1, CV_64FC1), q(h - 1, w, CV_64FC1);
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u + 1 < w; ++u) p.at<double>(v, u) = height.at<double>(v, u + 1) - height.at<double>(v, u);
+    for (int v = 0; v + 1 < h; ++v)
+      for (int u = 0; u < w; ++u) q.at<double>(v, u) = height.at<double>(v + 1, u) - height.at<double>(v, u);
+    photometric::DstPoisson poisson(w, h);
+    const cv::Mat solved = poisson.solve(p, q);
+    EXPECT_LT(cv::norm(solved - height, cv::NORM_INF), 1e-12) << w << " x " << h;
+  }
+}
+
 TEST(DctPoisson, RecoversAnyHeightMapUpToAConstantFromItsExactGradients) {
   const int w = 64, h = 48;
   std::mt19937 rng(9);

@@ -333,7 +333,8 @@ def main():
              "Realistic sensor (sample_clouds/<object>/scene_realistic.yaml: the true sensor's images rendered "
              "with lens distortion, pixel noise, blur, marker dropout, elastic spread and robot pose noise; "
              "detection, matching and RSRT with the sensor calibrated by rsrt_calibration)")
-    command = "benchmarks/table1/make_table1.py --out " + args.out + (" --sensor realistic" if args.sensor != "ideal" else "")
+    command = ("benchmarks/table1/make_table1.py --out " + args.out + (" --sensor realistic" if args.sensor != "ideal" else "")
+               + (f" --seeds {args.seeds}" if args.seeds != 5 else "") + (f" --methods '{args.methods}'" if args.methods else ""))
     with open(os.path.join(args.out, "table1.md"), "w") as f:
         f.write("# Table 1 in simulation\n\n")
         f.write(f"{level}, {args.seeds} seeds per cell; final mean chamfer distance (Eq. 11, estimate -> CAD) "

@@ -14,6 +14,17 @@
 using namespace touchcloud;
 using namespace touchcloud::test;
 
+namespace {
+
+// The staggered forward differences the solvers take: p across the columns
+// (width - 1 of them), q down the rows (height - 1).
+std::pair<cv::Mat, cv::Mat> exact_gradients(const cv::Mat& height) {
+  const int w = height.cols, h = height.rows;
+  return {height.colRange(1, w) - height.colRange(0, w - 1), height.rowRange(1, h) - height.rowRange(0, h - 1)};
+}
+
+}  // namespace
+
 TEST(DstPoisson, RecoversAKnownHeightMapFromItsExactGradients) {
   const int w = 320, h = 240;
   std::mt19937 rng(5);
@@ -24,11 +35,7 @@ TEST(DstPoisson, RecoversAKnownHeightMapFromItsExactGradients) {
       const double x = (u - 150.0) / 40, y = (v - 110.0) / 30;
       height.at<double>(v, u) = 1.5 * std::exp(-x * x - y * y) + noise(rng);  // a bump and rough texture
     }
-  cv::Mat p(h, w - 1, CV_64FC1), q(h - 1, w, CV_64FC1);
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u + 1 < w; ++u) p.at<double>(v, u) = height.at<double>(v, u + 1) - height.at<double>(v, u);
-  for (int v = 0; v + 1 < h; ++v)
-    for (int u = 0; u < w; ++u) q.at<double>(v, u) = height.at<double>(v + 1, u) - height.at<double>(v, u);
+  const auto [p, q] = exact_gradients(height);
   photometric::DstPoisson poisson(w, h);
   const cv::Mat solved = poisson.solve(p, q);
   double worst = 0;
@@ -47,11 +54,7 @@ TEST(DstPoisson, RecoversExactGradientsAtTheSmallestSizes) {
     cv::Mat height = cv::Mat::zeros(h, w, CV_64FC1);
     for (int v = 1; v + 1 < h; ++v)
       for (int u = 1; u + 1 < w; ++u) height.at<double>(v, u) = 0.3 * u - 0.2 * v + 0.1 * u * v;
-    cv::Mat p(h, w - 1, CV_64FC1), q(h - 1, w, CV_64FC1);
-    for (int v = 0; v < h; ++v)
-      for (int u = 0; u + 1 < w; ++u) p.at<double>(v, u) = height.at<double>(v, u + 1) - height.at<double>(v, u);
-    for (int v = 0; v + 1 < h; ++v)
-      for (int u = 0; u < w; ++u) q.at<double>(v, u) = height.at<double>(v + 1, u) - height.at<double>(v, u);
+    const auto [p, q] = exact_gradients(height);
     photometric::DstPoisson poisson(w, h);
     const cv::Mat solved = poisson.solve(p, q);
     EXPECT_LT(cv::norm(solved - height, cv::NORM_INF), 1e-12) << w << " x " << h;
@@ -65,11 +68,7 @@ TEST(DctPoisson, RecoversAnyHeightMapUpToAConstantFromItsExactGradients) {
   cv::Mat height(h, w, CV_64FC1);
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u) height.at<double>(v, u) = 0.02 * u + any(rng);  // nothing zero on the border
-  cv::Mat p(h, w - 1, CV_64FC1), q(h - 1, w, CV_64FC1);
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u + 1 < w; ++u) p.at<double>(v, u) = height.at<double>(v, u + 1) - height.at<double>(v, u);
-  for (int v = 0; v + 1 < h; ++v)
-    for (int u = 0; u < w; ++u) q.at<double>(v, u) = height.at<double>(v + 1, u) - height.at<double>(v, u);
+  const auto [p, q] = exact_gradients(height);
   photometric::DctPoisson poisson(w, h);
   const cv::Mat solved = poisson.solve(p, q);
   const double mean = cv::mean(height)[0];

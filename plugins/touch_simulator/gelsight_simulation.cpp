@@ -7,9 +7,6 @@ namespace touchcloud::touch_simulator {
 
 namespace {
 
-// Streams of random draws, one per effect (apart from the GelStereo's).
-enum DrawStream : std::uint64_t { kPoseNoise = 11, kImageNoise = 12 };
-
 const Scene& require_gelsight(const Scene& scene) {
   if (scene.family != sensor::SensorFamily::GelSight)
     throw InputError("the scene " + scene.file.string() +
@@ -58,7 +55,7 @@ const GelSightFrame& GelSightSimulation::step(const Eigen::Vector2d& target_xy_m
   f.reported_base_from_sensor = f.touch.base_from_sensor;
   if (scene_.effects.has(Effect::PoseNoise))
     f.reported_base_from_sensor = noisy_pose(f.touch.base_from_sensor, scene_.effect_parameters, noise_seed_,
-                                             kPoseNoise, static_cast<std::uint64_t>(f.index));
+                                             kGelSightPoseNoise, static_cast<std::uint64_t>(f.index));
   ++counts_.frames_simulated;
   if (f.touch.pressed) ++counts_.touches_completed;
   has_frame_ = true;
@@ -90,7 +87,7 @@ MonoColourFrame GelSightSimulation::render() {
   if (scene_.effects.has(Effect::Blur)) blur_image(image, scene_.effect_parameters.blur_sigma_px);
   if (image_noise_) {
     cv::Mat grey_view = image.reshape(1);  // each channel its own noise
-    image_noise_->apply(grey_view, draw_key(noise_seed_, {kImageNoise, static_cast<std::uint64_t>(frame_.index)}));
+    image_noise_->apply(grey_view, draw_key(noise_seed_, {kGelSightImageNoise, static_cast<std::uint64_t>(frame_.index)}));
   }
   ++counts_.frames_rendered;
   return stamped(image);

@@ -13,9 +13,6 @@ namespace touchcloud::touch_simulator {
 
 namespace {
 
-// Streams of random draws, one per effect.
-enum DrawStream : std::uint64_t { kPoseNoise = 1, kCentreNoise = 2, kDropout = 3, kImageNoise = 4, kColourNoise = 5 };
-
 RenderStyle render_style(const EffectParameters& p) {
   RenderStyle style;
   style.background_grey = p.background_grey;

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCloud = (touchcloud::test::source_dir() / "sample_clouds/gel_dome.pcd").string();
+const std::string kCloud = touchcloud::test::gel_dome_cloud();
 const std::string kDemo = (touchcloud::test::source_dir() / "pipelines/downsample_cloud.yaml").string();
 const std::string kTestPlugins = "TOUCHCLOUD_PLUGIN_PATH=" TOUCHCLOUD_TEST_PLUGIN_DIR;
 

@@ -160,7 +160,7 @@ TEST_F(ScoreVerb, FoldersAndGlobsExpandToTheCloudsInThem) {
 TEST_F(ScoreVerb, ScoresTheOutputFolderOfARun) {
   const std::string demo = (touchcloud::test::source_dir() / "pipelines/downsample_cloud.yaml").string();
   ASSERT_EQ(run_cli({"run", demo, "--out", path("out"), "--quiet"}).exit_code, 0);
-  const std::string gt = (touchcloud::test::source_dir() / "sample_clouds/gel_dome.pcd").string();
+  const std::string gt = touchcloud::test::gel_dome_cloud();
   const auto r = run_cli({"score", "--gt", gt, path("out"), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json all = json::parse(r.out);

@@ -11,8 +11,7 @@ using touchcloud::test::mentions;
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kCloud = touchcloud::test::source_dir().string() + "/sample_clouds/gel_dome.pcd";
-const std::string kRead = "  - id: read\n    plugin: cloud_reader\n    params: {path: " + kCloud + "}\n";
+const std::string kRead = "  - id: read\n    plugin: cloud_reader\n    params: {path: " + touchcloud::test::gel_dome_cloud() + "}\n";
 }  // namespace
 
 class HostilePipelines : public touchcloud::test::PipelineFixture {

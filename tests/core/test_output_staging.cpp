@@ -11,8 +11,7 @@ using namespace touchcloud;
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kCloud = touchcloud::test::source_dir().string() + "/sample_clouds/gel_dome.pcd";
-const std::string kWrite = "pipeline: t\nstages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: " + kCloud +
+const std::string kWrite = "pipeline: t\nstages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: " + touchcloud::test::gel_dome_cloud() +
                            "}\n  - id: w\n    plugin: cloud_writer\n    inputs: {cloud: read.cloud}\n"
                            "    params: {path: cloud.pcd}\n";
 

@@ -6,11 +6,10 @@ using namespace touchcloud;
 using touchcloud::test::mentions;
 
 namespace {
-const std::string kCloud = touchcloud::test::source_dir().string() + "/sample_clouds/gel_dome.pcd";
 
 std::string read_thin_write(const std::string& thin_params, const std::string& thin_inputs = "{cloud: read.cloud}") {
   return "pipeline: t\nstages:\n"
-         "  - id: read\n    plugin: cloud_reader\n    params: {path: " + kCloud + "}\n"
+         "  - id: read\n    plugin: cloud_reader\n    params: {path: " + touchcloud::test::gel_dome_cloud() + "}\n"
          "  - id: thin\n    plugin: downsample\n    params: " + thin_params + "\n    inputs: " + thin_inputs + "\n";
 }
 }  // namespace
@@ -165,7 +164,7 @@ TEST_F(PipelineValidation, LoopRules) {
   EXPECT_TRUE(mentions(errors("stages:\n  - id: a\n    plugin: test_counter\n"
                               "  - id: b\n    plugin: test_counter\n    inputs: {previous: a.value@previous}\n").at(0),
                        "'@previous' needs a and this stage inside one loop"));
-  EXPECT_TRUE(mentions(errors("stages:\n  - id: r\n    plugin: cloud_reader\n    params: {path: " + kCloud + "}\n"
+  EXPECT_TRUE(mentions(errors("stages:\n  - id: r\n    plugin: cloud_reader\n    params: {path: " + touchcloud::test::gel_dome_cloud() + "}\n"
                               "  - id: l\n    loop:\n      max_iterations: 2\n      stages:\n"
                               "        - id: t\n          plugin: downsample\n          inputs: {cloud: t.cloud@previous}\n").at(0),
                        "fed from the previous iteration"));

@@ -5,6 +5,9 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
+#include "test_support.hpp"
+#include "touchcloud/io/cloud_file.hpp"
+
 namespace touchcloud::test {
 
 PointCloud grid_cloud(int n, double spacing_mm) {
@@ -25,6 +28,10 @@ PointCloud load_cloud(const std::filesystem::path& file) {
                                                 : pcl::io::loadPCDFile(file.string(), cloud);
   if (status < 0) throw std::runtime_error("cannot read " + file.string());
   return cloud;
+}
+
+std::string cloud_read_error(const std::filesystem::path& file) {
+  return input_error_of([&] { read_cloud_file(file); });
 }
 
 }  // namespace touchcloud::test

@@ -12,5 +12,7 @@ namespace touchcloud::test {
 PointCloud grid_cloud(int n, double spacing_mm);
 void save_pcd(const std::filesystem::path& file, const PointCloud& cloud);
 PointCloud load_cloud(const std::filesystem::path& file);  // PCD or PLY; throws on failure
+// The InputError read_cloud_file(file) throws, or "(no InputError)".
+std::string cloud_read_error(const std::filesystem::path& file);
 
 }  // namespace touchcloud::test

@@ -16,6 +16,7 @@ namespace touchcloud::test {
 fs::path source_dir() { return TOUCHCLOUD_SOURCE_DIR; }
 fs::path binary_dir() { return TOUCHCLOUD_BINARY_DIR; }
 fs::path cli_path() { return binary_dir() / "bin" / "touchcloud"; }
+std::string gel_dome_cloud() { return (source_dir() / "sample_clouds" / "gel_dome.pcd").string(); }
 
 TempDir::TempDir() {
   static std::atomic<int> counter{0};

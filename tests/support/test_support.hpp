@@ -14,6 +14,8 @@ namespace touchcloud::test {
 std::filesystem::path source_dir();
 std::filesystem::path binary_dir();
 std::filesystem::path cli_path();  // build/bin/touchcloud
+// sample_clouds/gel_dome.pcd: the small cloud the pipeline tests read.
+std::string gel_dome_cloud();
 
 // A fresh empty folder under the system temp dir, removed by the destructor.
 class TempDir {

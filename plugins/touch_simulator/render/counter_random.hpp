@@ -20,6 +20,13 @@ inline std::uint64_t mix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+// The streams of draws, one per effect (a key's first counter): one list,
+// so that no two effects draw the same numbers.
+enum DrawStream : std::uint64_t {
+  kPoseNoise = 1, kCentreNoise = 2, kDropout = 3, kImageNoise = 4, kColourNoise = 5,  // GelStereo
+  kGelSightPoseNoise = 11, kGelSightImageNoise = 12,
+};
+
 // A 64-bit key for (seed, counters...).
 inline std::uint64_t draw_key(std::uint64_t seed, std::initializer_list<std::uint64_t> counters) {
   std::uint64_t h = mix64(seed + kGoldenGamma);

@@ -12,6 +12,8 @@
 namespace touchcloud::test {
 
 inline constexpr double kPlaneHeightMm = 10.0;
+// That plane as a scene's `object:` value.
+inline const std::string kPlaneObject = "{analytic: plane, height_mm: 10}";
 
 // A scene file: the plane, then `extra` YAML lines (top-level), with `effects`
 // as the effects list, e.g. "[contact, refraction]".

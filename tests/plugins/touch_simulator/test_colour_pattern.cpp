@@ -17,8 +17,6 @@ using touch_simulator::TouchSimulation;
 
 namespace {
 
-const std::string kPlane = "{analytic: plane, height_mm: 10}";
-
 bool same_image(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
 }
@@ -46,7 +44,7 @@ namespace {
 
 void expect_analytic_disparity(const std::string& sensor, int width, int height) {
   TempDir dir;
-  TouchSimulation s(colour_scene(dir, kPlane, "[render]", sensor), 1);
+  TouchSimulation s(colour_scene(dir, kPlaneObject, "[render]", sensor), 1);
   s.step({0, 0}, false);
   const DenseMaps truth = s.dense_truth();
   const RectifiedStereo& rect = truth.camera;
@@ -95,7 +93,7 @@ TEST(ColourPattern, RenderedPairIsThePatternSeenAtTheTrueDisparity) {
   TempDir dir;
   const std::string flat_light =
       "sensor:\n  pattern: colour_pattern\n  colour_pattern: {feature_mm: 1.0, image_size_px: [640, 360], vignetting: 0}\n";
-  TouchSimulation s(colour_scene(dir, kPlane, "[render]", flat_light), 1);
+  TouchSimulation s(colour_scene(dir, kPlaneObject, "[render]", flat_light), 1);
   s.step({0, 0}, false);
   const ColourStereoFrame f = s.render_colour();
   const DenseMaps truth = s.dense_truth();
@@ -122,7 +120,7 @@ TEST(ColourPattern, RenderedPairIsThePatternSeenAtTheTrueDisparity) {
 
 TEST(ColourPattern, RefractedTruthIsWhereTheRightViewSeesTheLeftRaysPointOnTheGel) {
   TempDir dir;
-  TouchSimulation s(colour_scene(dir, kPlane, "[render, refraction]"), 1);
+  TouchSimulation s(colour_scene(dir, kPlaneObject, "[render, refraction]"), 1);
   s.step({0, 0}, false);
   const DenseMaps truth = s.dense_truth();
   const Eigen::Isometry3d sensor_from_left = s.optics().left_from_sensor().inverse();
@@ -155,7 +153,7 @@ TEST(ColourPattern, RefractedTruthIsWhereTheRightViewSeesTheLeftRaysPointOnTheGe
 TEST(ColourPattern, PatternIsSeededAndReproducible) {
   TempDir dir;
   auto render = [&](const std::string& sensor, std::uint64_t run_seed) {
-    TouchSimulation s(colour_scene(dir, kPlane, "[contact, render]", sensor), run_seed);
+    TouchSimulation s(colour_scene(dir, kPlaneObject, "[contact, render]", sensor), run_seed);
     press_into(s, {2, 1}, 1.0);
     return s.render_colour();
   };
@@ -173,7 +171,7 @@ TEST(ColourPattern, PatternIsSeededAndReproducible) {
 TEST(ColourPattern, EffectsThatAreNotAskedForChangeNothing) {
   TempDir dir;
   auto pressed = [&](const std::string& effects) {
-    auto s = std::make_unique<TouchSimulation>(colour_scene(dir, kPlane, effects), 5);
+    auto s = std::make_unique<TouchSimulation>(colour_scene(dir, kPlaneObject, effects), 5);
     press_into(*s, {2, 1}, 1.0);
     return s;
   };
@@ -196,7 +194,7 @@ TEST(ColourPattern, EffectsThatAreNotAskedForChangeNothing) {
 TEST(ColourPattern, MarkerOutputsDoNotDependOnThePattern) {
   TempDir dir;
   TouchSimulation markers(plane_scene(dir, "[contact, refraction]"), 3);
-  TouchSimulation colour(colour_scene(dir, kPlane, "[contact, refraction]"), 3);
+  TouchSimulation colour(colour_scene(dir, kPlaneObject, "[contact, refraction]"), 3);
   press_into(markers, {2, 1}, 1.5);
   press_into(colour, {2, 1}, 1.5);
   EXPECT_EQ(markers.frame().gel.markers_sensor_mm, colour.frame().gel.markers_sensor_mm);
@@ -224,21 +222,21 @@ TEST(ColourPattern, ColourOutputsNeedTheColourPattern) {
   TouchSimulation s(plane_scene(dir, "[render]"), 1);
   s.step({0, 0}, false);
   EXPECT_NE(input_error([&] { s.dense_truth(); }).find("pattern: colour_pattern"), std::string::npos);
-  TouchSimulation c(colour_scene(dir, kPlane, "[render]"), 1);
+  TouchSimulation c(colour_scene(dir, kPlaneObject, "[render]"), 1);
   c.step({0, 0}, false);
   EXPECT_NE(input_error([&] { c.render(); }).find("colour_frame"), std::string::npos);
 }
 
 TEST(ColourPattern, SceneRefusesUnknownPatternsAndStrayColourFields) {
   TempDir dir;
-  const std::string dots = input_error([&] { colour_scene(dir, kPlane, "[render]", "sensor: {pattern: dots}\n"); });
+  const std::string dots = input_error([&] { colour_scene(dir, kPlaneObject, "[render]", "sensor: {pattern: dots}\n"); });
   EXPECT_NE(dots.find("sensor.pattern"), std::string::npos) << dots;
   EXPECT_NE(dots.find("markers, colour_pattern"), std::string::npos) << dots;
   const std::string stray =
-      input_error([&] { colour_scene(dir, kPlane, "[render]", "sensor: {colour_pattern: {feature_mm: 1}}\n"); });
+      input_error([&] { colour_scene(dir, kPlaneObject, "[render]", "sensor: {colour_pattern: {feature_mm: 1}}\n"); });
   EXPECT_NE(stray.find("pattern is not colour_pattern"), std::string::npos) << stray;
   const std::string size = input_error([&] {
-    colour_scene(dir, kPlane, "[render]", "sensor: {pattern: colour_pattern, colour_pattern: {image_size_px: [256.5, 256]}}\n");
+    colour_scene(dir, kPlaneObject, "[render]", "sensor: {pattern: colour_pattern, colour_pattern: {image_size_px: [256.5, 256]}}\n");
   });
   EXPECT_NE(size.find("sensor.colour_pattern.image_size_px"), std::string::npos) << size;
 }

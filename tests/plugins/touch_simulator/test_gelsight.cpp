@@ -16,8 +16,6 @@ using touch_simulator::PhotometricRenderer;
 
 namespace {
 
-const std::string kPlane = "{analytic: plane, height_mm: 10}";
-
 int differing_pixels(const cv::Mat& a, const cv::Mat& b) {
   cv::Mat d;
   cv::absdiff(a, b, d);
@@ -28,7 +26,7 @@ int differing_pixels(const cv::Mat& a, const cv::Mat& b) {
 
 TEST(GelSightScene, ReadsTheFamilyAndTheGelSightMiniDefaults) {
   TempDir dir;
-  const auto scene = gelsight_scene(dir, kPlane, "[contact]");
+  const auto scene = gelsight_scene(dir, kPlaneObject, "[contact]");
   EXPECT_EQ(scene.family, sensor::SensorFamily::GelSight);
   const auto& s = scene.gelsight;
   EXPECT_EQ(s.width_px, 320);
@@ -44,10 +42,10 @@ TEST(GelSightScene, ReadsTheFamilyAndTheGelSightMiniDefaults) {
 TEST(GelSightScene, NamesTheFieldValueAndRuleOfEachProblem) {
   TempDir dir;
   auto problem = [&](const std::string& sensor, const std::string& effects = "[contact]") {
-    return input_error([&] { gelsight_scene(dir, kPlane, effects, sensor); });
+    return input_error([&] { gelsight_scene(dir, kPlaneObject, effects, sensor); });
   };
   const std::string family = input_error([&] {
-    write_file(dir / "f.yaml", "object: " + kPlane + "\nsensor: {family: gelsite}\n");
+    write_file(dir / "f.yaml", "object: " + kPlaneObject + "\nsensor: {family: gelsite}\n");
     touch_simulator::load_scene(dir / "f.yaml");
   });
   EXPECT_NE(family.find("sensor.family"), std::string::npos) << family;
@@ -66,7 +64,7 @@ TEST(GelSightScene, NamesTheFieldValueAndRuleOfEachProblem) {
 
 TEST(GelSightRender, AFlatGelRendersTheBackgroundExactly) {
   TempDir dir;
-  GelSightSimulation sim(gelsight_scene(dir, kPlane, "[contact, render]"), 1);
+  GelSightSimulation sim(gelsight_scene(dir, kPlaneObject, "[contact, render]"), 1);
   const auto& f = sim.step({0, 0}, false);  // at the safe height: no contact
   ASSERT_EQ(f.pad.overlapping_px, 0);
   const MonoColourFrame image = sim.render(), reference = sim.render_reference();
@@ -82,7 +80,7 @@ TEST(GelSightRender, AFlatGelRendersTheBackgroundExactly) {
 
 TEST(GelSightRender, ImagesNeedTheRenderEffect) {
   TempDir dir;
-  GelSightSimulation sim(gelsight_scene(dir, kPlane, "[contact]"), 1);
+  GelSightSimulation sim(gelsight_scene(dir, kPlaneObject, "[contact]"), 1);
   sim.step({0, 0}, false);
   const std::string message = input_error([&] { sim.render(); });
   EXPECT_NE(message.find("has no 'render' effect"), std::string::npos) << message;
@@ -91,7 +89,7 @@ TEST(GelSightRender, ImagesNeedTheRenderEffect) {
 
 TEST(GelSightRender, ASpherePressGivesTheAnalyticNormalsColours) {
   TempDir dir;
-  const auto scene = gelsight_scene(dir, kPlane, "[contact, render]");
+  const auto scene = gelsight_scene(dir, kPlaneObject, "[contact, render]");
   const PhotometricRenderer renderer(scene.gelsight);
   // A ball of radius 4 mm pressed 0.6 mm deep at the image centre.
   const double radius = 4.0, depth = 0.6, pitch = scene.gelsight.mm_per_px;
@@ -129,7 +127,7 @@ TEST(GelSightRender, ASpherePressGivesTheAnalyticNormalsColours) {
 
 TEST(GelSightContact, ThePadRisesByTheOverlapOnlyWithContact) {
   TempDir dir;
-  GelSightSimulation with(gelsight_scene(dir, kPlane, "[contact]"), 1);
+  GelSightSimulation with(gelsight_scene(dir, kPlaneObject, "[contact]"), 1);
   const auto& f = press_pad_into(with, {0, 0}, 0.5);
   EXPECT_EQ(f.pad.overlapping_px, 320 * 240);
   double lo, hi;
@@ -137,7 +135,7 @@ TEST(GelSightContact, ThePadRisesByTheOverlapOnlyWithContact) {
   EXPECT_NEAR(lo, f.pad.max_overlap_mm, 1e-6);  // a plane: the same overlap everywhere
   EXPECT_NEAR(hi, f.pad.max_overlap_mm, 1e-6);
   EXPECT_GT(hi, 0.5);
-  GelSightSimulation without(gelsight_scene(dir, kPlane, "[]", "", "none.yaml"), 1);
+  GelSightSimulation without(gelsight_scene(dir, kPlaneObject, "[]", "", "none.yaml"), 1);
   const auto& g = press_pad_into(without, {0, 0}, 0.5);
   EXPECT_EQ(g.pad.overlapping_px, 320 * 240);
   EXPECT_EQ(cv::countNonZero(g.pad.height_mm), 0);
@@ -204,7 +202,7 @@ TEST(GelSightEffects, PixelNoiseAndBlurEachChangeOnlyTheImage) {
 
 TEST(GelSightEffects, PoseNoiseMovesOnlyTheReportedPose) {
   TempDir dir;
-  GelSightSimulation sim(gelsight_scene(dir, kPlane, "[contact, {pose_noise: {sigma_mm: 0.5}}]"), 3);
+  GelSightSimulation sim(gelsight_scene(dir, kPlaneObject, "[contact, {pose_noise: {sigma_mm: 0.5}}]"), 3);
   const auto& f = sim.step({1, 2}, false);
   EXPECT_GT((f.reported_base_from_sensor.translation() - f.touch.base_from_sensor.translation()).norm(), 1e-3);
   EXPECT_EQ(sim.height_truth(0.05).pose.base_from_sensor.matrix(), f.touch.base_from_sensor.matrix());
@@ -231,7 +229,7 @@ TEST(GelSightTruth, TheContactMaskIsTheThresholdOnTheTrueHeight) {
 
 TEST(GelSightStage, RefusesTheGelStereosOutputsAndTheOtherWayRound) {
   TempDir dir;
-  write_file(dir / "g.yaml", "object: " + kPlane + "\nsensor: {family: gelsight}\neffects: [contact, render]\n");
+  write_file(dir / "g.yaml", "object: " + kPlaneObject + "\nsensor: {family: gelsight}\neffects: [contact, render]\n");
   StageHarness g("touch_simulator", {{"scene", (dir / "g.yaml").string()}, {"target_xy_mm", std::vector<double>{0, 0}}});
   g.configure();
   const std::string markers = input_error([&] { g.process({}, {"markers"}); });

@@ -17,8 +17,6 @@ using config::FieldRule;
 
 namespace {
 
-constexpr double kMaxFps = 1000;
-
 PhotometricLight light(double azimuth_deg, double elevation_deg, Eigen::Vector3d rgb) {
   const double a = azimuth_deg * M_PI / 180, e = elevation_deg * M_PI / 180;
   return {Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)), rgb};
@@ -90,7 +88,8 @@ void read_gelsight_sensor(ConfigFields& f, ConfigProblems& problems, GelSightSen
   s.ambient_rgb = Eigen::Vector3d(ambient[0], ambient[1], ambient[2]);
   s.vignetting = f.number("vignetting", s.vignetting, FieldRule::Probability);
   s.fps = f.number("fps", s.fps, FieldRule::Positive);
-  if (s.fps > kMaxFps) f.error("fps", "is " + number_text(s.fps) + "; must be at most " + number_text(kMaxFps));
+  if (s.fps > kMaxSensorFps)
+    f.error("fps", "is " + number_text(s.fps) + "; must be at most " + number_text(kMaxSensorFps));
 }
 
 GelSightSensor load_gelsight_sensor(const fs::path& file) {

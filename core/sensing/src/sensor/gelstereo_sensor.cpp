@@ -22,8 +22,6 @@ using config::FieldRule;
 
 namespace {
 
-constexpr double kMaxFps = 1000;  // frames per second a scene may ask for
-
 Eigen::Matrix3d housing_from_plate(const PlateSpec& plate) {
   return config::rpy_rotation(plate.tilt_deg[0], plate.tilt_deg[1], 0.0);
 }
@@ -209,10 +207,10 @@ void read_gelstereo_sensor(ConfigFields& f, ConfigProblems& problems, GelStereoS
   sensor.fps = f.number("fps", sensor.fps, FieldRule::Positive);
   // Frames are simulated one by one: more than a high-speed camera gives
   // would take forever (or, near the largest double, move the robot by 0).
-  if (sensor.fps > kMaxFps) {
+  if (sensor.fps > kMaxSensorFps) {
     f.error("fps", number_text(sensor.fps) + " frames per second is more than a camera gives (at most " +
-                       number_text(kMaxFps) + ")");
-    sensor.fps = kMaxFps;
+                       number_text(kMaxSensorFps) + ")");
+    sensor.fps = kMaxSensorFps;
   }
 }
 

@@ -2,6 +2,7 @@
 // ASCII value, counts far past the file's size.
 #include <gtest/gtest.h>
 
+#include "cloud_files.hpp"
 #include "test_support.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/io/cloud_file.hpp"
@@ -16,19 +17,15 @@ std::string pcd_header(const std::string& data, std::uint64_t width, std::uint64
          "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(points) + "\nDATA " + data + "\n";
 }
 
-std::string read_error(const fs::path& file) {
-  return test::input_error_of([&] { read_cloud_file(file); });
-}
-
 }  // namespace
 
 TEST(CloudFileReading, ANonNumericAsciiPcdLineIsAnErrorWithItsLine) {
   test::TempDir dir;
   test::write_file(dir / "a.pcd", pcd_header("ascii", 3, 3) + "0 0 0\nhello world !\n1 1 1\n");
-  const std::string msg = read_error(dir / "a.pcd");
+  const std::string msg = test::cloud_read_error(dir / "a.pcd");
   EXPECT_NE(msg.find("a.pcd:13: 'hello' is not a number (point 1)"), std::string::npos) << msg;
   test::write_file(dir / "b.pcd", pcd_header("ascii", 3, 3) + "10.0 10.0 10.0\n1.5 1.5\n1.0 1.0 1.0\n");
-  EXPECT_NE(read_error(dir / "b.pcd").find("point 1 has 2 values"), std::string::npos) << read_error(dir / "b.pcd");
+  EXPECT_NE(test::cloud_read_error(dir / "b.pcd").find("point 1 has 2 values"), std::string::npos) << test::cloud_read_error(dir / "b.pcd");
   // The good file reads.
   test::write_file(dir / "c.pcd", pcd_header("ascii", 3, 3) + "0 0 0\n1e-3 2 -3\n1 1 1\n");
   EXPECT_EQ(read_cloud_file(dir / "c.pcd").cloud->size(), 3u);
@@ -42,7 +39,7 @@ TEST(CloudFileReading, AbsurdPointCountsAreBadInputNotAnAllocationFailure) {
                                       "property float x\nproperty float y\nproperty float z\nend_header\n" +
                                           std::string(12, '\0'));
   for (const char* name : {"binary.pcd", "ascii.pcd", "cloud.ply"}) {
-    const std::string msg = read_error(dir / name);
+    const std::string msg = test::cloud_read_error(dir / name);
     EXPECT_NE(msg.find(name), std::string::npos) << msg;
     EXPECT_NE(msg.find("4000000000"), std::string::npos) << msg;
   }

@@ -4,6 +4,7 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include "cloud_files.hpp"
 #include "test_support.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/io/cloud_file.hpp"
@@ -12,10 +13,6 @@ using namespace touchcloud;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string read_error(const fs::path& file) {
-  return test::input_error_of([&] { read_cloud_file(file); });
-}
 
 // 7 x 3 organised cloud with colour and normals, so x, y, z are neither the
 // only fields nor the first ones in every type.
@@ -90,7 +87,7 @@ TEST(PcdFile, MalformedHeadersAreRefusedWithTheirLine) {
   };
   for (const auto& c : cases) {
     test::write_file(dir / c.name, c.text);
-    const std::string msg = read_error(dir / c.name);
+    const std::string msg = test::cloud_read_error(dir / c.name);
     EXPECT_NE(msg.find((dir / c.name).string()), std::string::npos) << msg;
     EXPECT_NE(msg.find(c.says), std::string::npos) << c.name << ": " << msg;
   }

@@ -37,6 +37,12 @@ optics::StereoRig make_rig(const RigSetup& setup = {});
 // normal through the point under the middle of the baseline.
 std::vector<Eigen::Vector3d> dome_points(const optics::StereoRig& rig, int count, std::uint32_t seed);
 
+// Distance of `point` from the line through `origin` along the unit `direction`.
+inline double distance_to_line(const Eigen::Vector3d& point, const Eigen::Vector3d& origin,
+                               const Eigen::Vector3d& direction) {
+  return (point - origin).cross(direction).norm();
+}
+
 // Points of `points` that both cameras see, with their pixels.
 struct StereoView {
   std::vector<Eigen::Vector3d> points_mm;

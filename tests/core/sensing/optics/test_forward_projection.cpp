@@ -18,10 +18,6 @@ namespace {
 
 constexpr StereoSide kSides[] = {StereoSide::Left, StereoSide::Right};
 
-double distance_to_line(const Eigen::Vector3d& point, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
-  return (point - origin).cross(direction).norm();
-}
-
 // Hard case 1: with all indices equal the plate is invisible.
 TEST(ForwardProjection, EqualIndicesGiveThePinholeProjection) {
   for (double mu : {1.0, 1.49}) {
@@ -44,7 +40,7 @@ TEST(ForwardProjection, EqualIndicesGiveThePinholeProjection) {
         const Eigen::Vector3d camera_ray =
             rig.camera_from_left(side).linear().transpose() * rig.camera(side).back_project(pinhole.pixel_px).direction;
         EXPECT_NEAR((ray.direction - camera_ray).norm(), 0.0, 1e-12);
-        EXPECT_NEAR(distance_to_line(ray.origin_mm, rig.centre_mm(side), camera_ray), 0.0, 1e-12);
+        EXPECT_NEAR(test::distance_to_line(ray.origin_mm, rig.centre_mm(side), camera_ray), 0.0, 1e-12);
         ++compared;
       }
     }
@@ -152,7 +148,7 @@ TEST(ForwardProjection, CollapsedLayersEqualOneInterface) {
             rig.camera_from_left(side).linear().transpose() * rig.camera(side).back_project(got.pixel_px).direction;
         const auto [on_line, direction] = single.silicone_ray(rig.centre_mm(side), pixel_air);
         worst_line_mm = std::max({worst_line_mm, (ray.direction - direction).norm(),
-                                  distance_to_line(ray.origin_mm, on_line, direction)});
+                                  test::distance_to_line(ray.origin_mm, on_line, direction)});
         ++compared;
       }
     }
@@ -191,7 +187,7 @@ TEST(ForwardProjection, DomeRoundTrips) {
         const SiliconeRay ray = back_project_refracted(rig, side, pixel.pixel_px);
         ASSERT_EQ(ray.status, TraceStatus::Ok);
         EXPECT_GE((point - ray.origin_mm).dot(ray.direction), 0.0);
-        worst_point_to_ray_mm = std::max(worst_point_to_ray_mm, distance_to_line(point, ray.origin_mm, ray.direction));
+        worst_point_to_ray_mm = std::max(worst_point_to_ray_mm, test::distance_to_line(point, ray.origin_mm, ray.direction));
       }
       EXPECT_GT(seen, kPoints * 7 / 10) << "tilt " << tilt.tilt_deg << " " << to_string(side);
 

@@ -12,10 +12,6 @@
 namespace touchcloud::optics {
 namespace {
 
-double distance_to_line(const Eigen::Vector3d& point, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
-  return (point - origin).cross(direction).norm();
-}
-
 // Hard case 5: r = 0 has no radial direction; the output must not jump there.
 TEST(RefractionHardCases, OnTheRefractionAxisOutputIsFiniteAndContinuous) {
   // Exactly on the axis (untilted plate, point straight ahead): r == 0.
@@ -51,7 +47,7 @@ TEST(RefractionHardCases, OnTheRefractionAxisOutputIsFiniteAndContinuous) {
   // And back: the pixel's ray runs along the axis through the point.
   const SiliconeRay ray = back_project_refracted(rig, StereoSide::Left, centre.pixel_px);
   ASSERT_EQ(ray.status, TraceStatus::Ok);
-  EXPECT_NEAR(distance_to_line(axis_point, ray.origin_mm, ray.direction), 0.0, 1e-12);
+  EXPECT_NEAR(test::distance_to_line(axis_point, ray.origin_mm, ray.direction), 0.0, 1e-12);
 }
 
 // Hard case 6: a marker on the gel face is in the silicone; a point in the
@@ -110,7 +106,7 @@ TEST(RefractionHardCases, GrazingRaysConvergeAndFallOutOfView) {
     // The returned path does reach the point.
     const SiliconeRay ray = trace_into_silicone(plate, centre, air.direction);
     ASSERT_EQ(ray.status, TraceStatus::Ok) << r;
-    EXPECT_LE(distance_to_line(point, ray.origin_mm, ray.direction), 1e-12 * r) << r;
+    EXPECT_LE(test::distance_to_line(point, ray.origin_mm, ray.direction), 1e-12 * r) << r;
     const RefractedPixel pixel = project_refracted(rig, StereoSide::Left, point);
     EXPECT_EQ(pixel.status, TraceStatus::OutOfView) << r;
     EXPECT_TRUE(pixel.pixel_px.allFinite());

@@ -37,6 +37,9 @@ namespace touchcloud::sensor {
 enum class SensorFamily { GelStereo, GelSight };
 const char* to_string(SensorFamily family);
 
+// The most frames per second a scene may ask of either family's camera.
+inline constexpr double kMaxSensorFps = 1000;
+
 struct PhotometricLight {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // unit, towards the light (see above)
   Eigen::Vector3d colour_rgb = Eigen::Vector3d::Zero();  // grey levels per channel at n = l

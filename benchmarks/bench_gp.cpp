@@ -26,10 +26,14 @@
 // GaussianProcessRegressor (benchmarks/peers/gp_sklearn.py) on the same data.
 //
 //   bench_gp [--write-data DIR] [--data-dir DIR] [--lml-at S2,L,NOISE] [Google Benchmark flags]
+//   bench_gp --openblas-coretype
 //
 // --write-data writes DIR/points.csv (x, y, z in mm) and exits; --data-dir
 // reads it instead of sampling; --lml-at prints our log marginal likelihood
-// of that data at the given hyperparameters (mm^2, mm, mm^2) as JSON and exits.
+// of that data at the given hyperparameters (mm^2, mm, mm^2) as JSON and exits;
+// --openblas-coretype prints the OpenBLAS kernels the CLI would choose for
+// this CPU (empty: OpenBLAS's own detection). Unless OPENBLAS_CORETYPE is
+// set, bench_gp runs itself again with those, as a user's run gets them.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -43,6 +47,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <pcl/io/pcd_io.h>
 
 #include "gp/exact_gp.hpp"
@@ -53,6 +59,7 @@
 #include "gp_surface_model.hpp"
 #include "footprint_choice.hpp"
 #include "touch_choice.hpp"
+#include "touchcloud/blas_environment.hpp"
 
 namespace {
 
@@ -225,19 +232,28 @@ void BM_NextTouchChoice(benchmark::State& state) {
   base->fit(s.xy.topRows(n0), s.z.head(n0));
   base->reserve(kTrainingPoints + kTouchPoints);
   const WorkspaceGrid grid = fox_mask_grid();
-  const GpSurfaceModel before(base, std::nullopt);
-  // The previous touch's choice filled the candidate cache (and, for the
+  // The previous touch's choice fills the candidate cache (and, for the
   // footprint strategy, the candidates' V^T V).
-  if (state.range(0) == 1)
-    footprint_variance_reduction_cell(before, grid, {});
-  else
-    max_variance_cell(before, grid, 1);
+  auto choose_before = [&](const std::shared_ptr<const gp_surface::ExactGp>& gp) {
+    if (state.range(0) == 1)
+      footprint_variance_reduction_cell(GpSurfaceModel(gp, std::nullopt), grid, {});
+    else
+      max_variance_cell(GpSurfaceModel(gp, std::nullopt), grid, 1);
+  };
+  choose_before(base);
   const bool after_touch = state.range(1) == 1;
   for (auto _ : state) {
     state.PauseTiming();
-    auto next = base;
+    std::shared_ptr<gp_surface::ExactGp> next = base;
     if (after_touch) {
-      next = std::make_shared<gp_surface::ExactGp>(*base);
+      // As in the active loop: the previous touch's model, on a store of its
+      // own with its candidate cache filled, then the touch added in place
+      // (a copy of `base` would find the rows above n0 written by the last
+      // iteration's touch, move to a new store and start with no cache).
+      auto previous = std::make_shared<gp_surface::ExactGp>(*base);
+      previous->reserve(previous->capacity() + 1);
+      choose_before(previous);
+      next = std::make_shared<gp_surface::ExactGp>(*previous);
       next->add_points(batch[0].xy, batch[0].z);
     }
     const GpSurfaceModel model(next, std::nullopt);
@@ -315,6 +331,18 @@ int print_lml(const std::string& spec) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 2 && !std::strcmp(argv[1], "--openblas-coretype")) {  // for run_gp_bench.sh's peer
+    std::printf("%s\n", preferred_openblas_coretype().c_str());
+    return 0;
+  }
+  // OpenBLAS reads OPENBLAS_CORETYPE when it loads, before main: so run
+  // again with the kernels the CLI chooses for a user's run (on a CPU that
+  // Debian's OpenBLAS 0.3.21 does not recognise it would take its slowest).
+  if (!std::getenv("OPENBLAS_CORETYPE") && !preferred_openblas_coretype().empty()) {
+    prepare_blas_environment();
+    execv("/proc/self/exe", argv);
+    std::perror("bench_gp: execv /proc/self/exe");  // went on with the kernels already loaded
+  }
   std::string write_dir, lml_at;
   std::vector<char*> rest{argv[0]};
   for (int i = 1; i < argc; ++i) {
@@ -332,6 +360,8 @@ int main(int argc, char** argv) {
   }
   benchmark::AddCustomContext("gp_linear_algebra", gp_surface::factor_algebra_backend());
   benchmark::AddCustomContext("gp_vector_exp", gp_surface::vector_exp_path());
+  if (const char* coretype = std::getenv("OPENBLAS_CORETYPE"))
+    benchmark::AddCustomContext("openblas_coretype", coretype);
   int rest_argc = static_cast<int>(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());
   if (benchmark::ReportUnrecognizedArguments(rest_argc, rest.data())) return 2;

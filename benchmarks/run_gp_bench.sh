@@ -25,6 +25,12 @@ cores=$(nproc)
 # The selections use every core on both sides through OpenBLAS (ours: the
 # dense factor algebra; scikit-learn: NumPy/SciPy's Cholesky and solves).
 export OMP_NUM_THREADS="$cores" OPENBLAS_NUM_THREADS="$cores"
+# Both sides on the OpenBLAS kernels the CLI chooses for this CPU (bench_gp
+# would choose them for itself; NumPy would not).
+coretype=$("$bench" --openblas-coretype)
+if [ -z "${OPENBLAS_CORETYPE:-}" ] && [ -n "$coretype" ]; then
+  export OPENBLAS_CORETYPE="$coretype"
+fi
 if ! dpkg -s libopenblas0-pthread >/dev/null 2>&1; then
   echo "note: libopenblas0-pthread is not installed (apt-get install libopenblas0-pthread);" \
        "NumPy and SciPy run on the default BLAS, which may be far slower" >&2

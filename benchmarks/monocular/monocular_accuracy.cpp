@@ -34,6 +34,7 @@
 
 #include "gelsight_simulation.hpp"
 #include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/file_write.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #ifdef TOUCHCLOUD_WITH_NETWORKS
 #include "touchcloud/learning/tactile_net_pair.hpp"
@@ -192,7 +193,7 @@ std::optional<std::vector<std::string>> rows_over_ranks(const char* self, int ra
     command.insert(command.end(), passed_on.begin(), passed_on.end());
     commands.push_back(command);
   }
-  std::ofstream(folder / "commands.json") << commands.dump();
+  touchcloud::write_file(folder / "commands.json", commands.dump());
   const std::string launch = "python3 '" + kSource + "/scripts/mpi_launch.py' --ranks " + std::to_string(ranks) +
                              " '" + (folder / "commands.json").string() + "'";
   std::optional<std::vector<std::string>> rows;
@@ -271,7 +272,7 @@ static int run(int argc, char** argv) {
     for (std::size_t i = 0; i < all.size(); ++i)
       if (only_case < 0 || static_cast<long>(i) == only_case) rows.push_back(case_rows(all[i], setup));
     if (only_case >= 0) {
-      std::ofstream(rows_file) << rows.front();
+      touchcloud::write_file(rows_file, rows.front());
       return 0;
     }
   }
@@ -294,8 +295,10 @@ static int run(int argc, char** argv) {
        << table.str();
   std::cout << text.str();
   if (!out.empty()) {
+    // The folder made if missing; a failed write is an error, not a "wrote" with no file.
+    std::filesystem::create_directories(out);
     const std::string file = out + "/results" + (noise > 0 ? "_noise" : "") + ".md";
-    std::ofstream(file) << text.str();
+    touchcloud::write_file(file, text.str());
     std::cout << "wrote " << file << "\n";
   }
   return 0;

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "gp/factor_algebra.hpp"
+#include "gp/huge_pages.hpp"
 #include "gp/latent_variance.hpp"
 #include "gp/vector_exp.hpp"
 
@@ -26,6 +27,7 @@ struct ExactGp::FactorStore {
   // across every column (at n = 2,000: ~2,000 faults in the first touch
   // after an allocation, then one touch in eight or so faults every column).
   FactorStore(Eigen::Index capacity, Eigen::Index in_use) : l(capacity, capacity) {
+    advise_huge_pages(l.data(), static_cast<std::size_t>(l.size()));
     l.bottomRows(capacity - std::min(in_use, capacity)).setZero();
   }
   Eigen::MatrixXd l;  // capacity x capacity
@@ -118,6 +120,7 @@ void ExactGp::move_to_new_store(Eigen::Index capacity) {
     if (rows > 0) {
       grown->candidates_mm = store_->candidates_mm;
       grown->v.resize(grown->l.rows(), store_->v.cols());
+      advise_huge_pages(grown->v.data(), static_cast<std::size_t>(grown->v.size()));
       grown->v.topRows(rows) = store_->v.topRows(rows);
       grown->v_rows = rows;
       grown->v_norms = rows == store_->v_rows ? store_->v_norms : grown->v.topRows(rows).colwise().squaredNorm();
@@ -278,6 +281,7 @@ void ExactGp::extend_cached_rows(const Eigen::MatrixX2d& xy_mm) const {
   if (store.candidates_mm.rows() != m || store.candidates_mm != xy_mm || store.v.rows() != store.l.rows()) {
     store.candidates_mm = xy_mm;
     store.v.resize(store.l.rows(), m);
+    advise_huge_pages(store.v.data(), static_cast<std::size_t>(store.v.size()));
     store.v_rows = 0;
     store.v_norms = Eigen::RowVectorXd::Zero(m);
     store.gram.resize(0, 0);

@@ -8,6 +8,7 @@
 
 #include "gp/cholesky_inverse.hpp"
 #include "gp/factor_algebra.hpp"
+#include "gp/huge_pages.hpp"
 #include "gp/kernel.hpp"
 #include "gp/training_data.hpp"
 #include "gp/triangle_columns.hpp"
@@ -34,6 +35,7 @@ void MarginalLikelihood::factorise(const Hyperparameters& h) {
   const Eigen::Index n = x_.size();
   if (work_.rows() != n) {
     work_.resize(n, n);
+    advise_huge_pages(work_.data(), static_cast<std::size_t>(work_.size()));
     factor_held_ = false;
   }
   if (factor_held_ && held_h_ == h) return;

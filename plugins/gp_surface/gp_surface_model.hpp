@@ -21,6 +21,7 @@ class GpSurfaceModel final : public SurfaceModel {
   }
   Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
   std::optional<Eigen::MatrixXd> covariance(const Eigen::MatrixX2d& xy) const override { return gp_->covariance(xy); }
+  Eigen::VectorXd candidate_mean(const Eigen::MatrixX2d& xy) const override { return gp_->candidate_mean(xy); }
   std::optional<double> noise_variance_mm2() const override { return gp_->hyperparameters().noise_variance_mm2; }
   std::optional<std::array<double, 2>> data_z_range_mm() const override { return data_z_range_mm_; }
   std::map<std::string, double> hyperparameters() const override;

@@ -1,7 +1,6 @@
 #include "footprint_choice.hpp"
 
 #include <cmath>
-#include <future>
 #include <sstream>
 #include <vector>
 
@@ -74,11 +73,10 @@ FootprintChoice footprint_variance_reduction_cell(const SurfaceModel& surface, c
 
   const Eigen::MatrixX2d centres = grid.cell_centres_mm();
   const Eigen::Index m = centres.rows();
-  // The mean (for the contact) on a second thread while this one brings the
-  // covariance up to date: after a touch both pass over the new data.
-  std::future<Eigen::VectorXd> mean_later = std::async(std::launch::async, [&] { return surface.mean(centres); });
   const Eigen::MatrixXd s = checked_covariance(surface, centres);
-  const Eigen::VectorXd mean = mean_later.get();
+  // The mean (for the contact) from what the covariance just brought up to
+  // date: no pass over all the training data.
+  const Eigen::VectorXd mean = surface.candidate_mean(centres);
   for (Eigen::Index i = 0; i < m; ++i)
     if (!std::isfinite(mean[i]))
       throw RunError("the surface model gave mean " + number_text(mean[i]) + " mm at " + at(centres, i));

@@ -380,6 +380,19 @@ Eigen::MatrixXd ExactGp::covariance(const Eigen::MatrixX2d& xy_mm, std::size_t* 
   return out;
 }
 
+Eigen::VectorXd ExactGp::candidate_mean(const Eigen::MatrixX2d& xy_mm) const {
+  check_finite(xy_mm, "query point");
+  const Eigen::Index m = xy_mm.rows();
+  if (n_ == 0 || m == 0 || m > options_.max_cached_candidates) return mean(xy_mm);
+  FactorStore& store = *store_;
+  std::lock_guard<std::mutex> lock(store.mutex);
+  extend_cached_rows(xy_mm);
+  // The cache's first n_ rows are this model's V, also for an older snapshot.
+  Eigen::VectorXd out = store.v.topRows(n_).transpose() * v_;
+  out.array() += centring_.z_mm;
+  return out;
+}
+
 double ExactGp::log_marginal_likelihood() const {
   if (n_ == 0) return 0.0;
   return -0.5 * v_.squaredNorm() - factor().diagonal().array().log().sum() -

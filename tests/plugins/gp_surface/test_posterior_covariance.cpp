@@ -79,6 +79,39 @@ TEST(GpPosteriorCovariance, CachedAcrossTouchesAndSnapshotsEqualsAFreshSolve) {
   for (const ExactGp& old : snapshots) EXPECT_LT(largest_difference(old.covariance(c), fresh(old)), 1e-11) << old.size();
 }
 
+// The footprint choice's mean from the cache (V^T v) is the mean, to
+// rounding, for the newest model after each touch and for older snapshots;
+// without a cache it is mean() itself.
+TEST(GpPosteriorCovariance, CandidateMeanFromTheCacheIsTheMean) {
+  const Eigen::MatrixX2d xy = test::random_xy(400, 83);
+  const Eigen::VectorXd z = test::heights(xy, 0.05);
+  const Eigen::MatrixX2d c = test::grid_xy(14, 14, -5.0, 65.0);  // also outside the data
+  const Hyperparameters h{4.0, 8.0, 0.01};
+  const auto close = [&](const ExactGp& model) {
+    const Eigen::VectorXd scale = model.mean(c).cwiseAbs().array() + 1.0;
+    return ((model.candidate_mean(c) - model.mean(c)).array() / scale.array()).abs().maxCoeff();
+  };
+  ExactGp gp(KernelKind::rbf, h);
+  EXPECT_EQ(gp.candidate_mean(c), gp.mean(c)) << "no data: the prior mean";
+  gp.fit(xy.topRows(160), z.head(160));
+  EXPECT_LT(close(gp), 1e-12);
+  std::vector<ExactGp> snapshots;
+  for (Eigen::Index n = 160; n < 400; n += 60) {
+    ExactGp next = gp;
+    next.add_points(xy.middleRows(n, 60), z.segment(n, 60));
+    snapshots.push_back(gp);
+    gp = next;
+    if (n == 220) gp.covariance(c);  // the cache extended by another path first
+    EXPECT_LT(close(gp), 1e-12) << n;
+  }
+  for (const ExactGp& old : snapshots) EXPECT_LT(close(old), 1e-12) << old.size();
+  ExactGpOptions uncached;
+  uncached.max_cached_candidates = 0;
+  ExactGp plain(KernelKind::rbf, h, uncached);
+  plain.fit(xy, z);
+  EXPECT_EQ(plain.candidate_mean(c), plain.mean(c));
+}
+
 TEST(GpPosteriorCovariance, SparseWithInducingPointsAtTheDataEqualsExact) {
   const Eigen::MatrixX2d xy = test::random_xy(90, 5);
   const Eigen::VectorXd z = test::heights(xy, 0.05);

@@ -55,6 +55,12 @@ class SurfaceModel {
   virtual std::optional<std::array<double, 2>> data_z_range_mm() const { return std::nullopt; }
   // Named hyperparameters with units in the name ("lengthscale_mm").
   virtual std::map<std::string, double> hyperparameters() const = 0;
+  // Posterior mean at the rows of `xy` by way of what covariance(xy) keeps: a
+  // model that caches the cross-covariances of a query set asked for again
+  // (next_touch's grid, every touch) answers from them without a pass over
+  // all its data. Equal to mean(xy) up to rounding, not bit for bit; by
+  // default mean(xy). (Plugin ABI 6.)
+  virtual Eigen::VectorXd candidate_mean(const Eigen::MatrixX2d& xy) const { return mean(xy); }
 };
 // A model does not change once a stage has output it, so a stage that gets
 // the same pointer again may reuse what it computed from it.

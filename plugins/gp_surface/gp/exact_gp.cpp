@@ -22,12 +22,12 @@ std::string to_string(UpdatePath path) { return path == UpdatePath::bordered ? "
 // L for every model of one lineage: rows [0, claimed) were written by the
 // newest model; a model of n points reads only the lower n x n corner.
 struct ExactGp::FactorStore {
-  // Rows from `in_use` on are written here, once: the first write to a page
-  // costs a page fault, and later touches' bordered updates write new rows
-  // across every column (at n = 2,000: ~2,000 faults in the first touch
-  // after an allocation, then one touch in eight or so faults every column).
+  // Rows from `in_use` on are written here, once, so that the pages later
+  // touches' bordered updates write (new rows across every column) are
+  // faulted in now rather than during an update; with huge pages
+  // (gp/huge_pages.hpp) that is a few dozen faults for the whole store.
   FactorStore(Eigen::Index capacity, Eigen::Index in_use) : l(capacity, capacity) {
-    advise_huge_pages(l.data(), static_cast<std::size_t>(l.size()));
+    advise_huge_pages(l);
     l.bottomRows(capacity - std::min(in_use, capacity)).setZero();
   }
   Eigen::MatrixXd l;  // capacity x capacity
@@ -120,7 +120,7 @@ void ExactGp::move_to_new_store(Eigen::Index capacity) {
     if (rows > 0) {
       grown->candidates_mm = store_->candidates_mm;
       grown->v.resize(grown->l.rows(), store_->v.cols());
-      advise_huge_pages(grown->v.data(), static_cast<std::size_t>(grown->v.size()));
+      advise_huge_pages(grown->v);
       grown->v.topRows(rows) = store_->v.topRows(rows);
       grown->v_rows = rows;
       grown->v_norms = rows == store_->v_rows ? store_->v_norms : grown->v.topRows(rows).colwise().squaredNorm();
@@ -281,7 +281,7 @@ void ExactGp::extend_cached_rows(const Eigen::MatrixX2d& xy_mm) const {
   if (store.candidates_mm.rows() != m || store.candidates_mm != xy_mm || store.v.rows() != store.l.rows()) {
     store.candidates_mm = xy_mm;
     store.v.resize(store.l.rows(), m);
-    advise_huge_pages(store.v.data(), static_cast<std::size_t>(store.v.size()));
+    advise_huge_pages(store.v);
     store.v_rows = 0;
     store.v_norms = Eigen::RowVectorXd::Zero(m);
     store.gram.resize(0, 0);

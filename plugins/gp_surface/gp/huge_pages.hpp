@@ -9,6 +9,8 @@
 
 #include <cstddef>
 
+#include <Eigen/Core>
+
 namespace touchcloud::gp_surface {
 
 // Advises 2 MiB pages for the whole 2 MiB-aligned pages inside
@@ -16,5 +18,9 @@ namespace touchcloud::gp_surface {
 // stay as they are). Buffers too small to hold one such page are left alone.
 // Returns the bytes advised (0 when none or when the kernel refused).
 std::size_t advise_huge_pages(double* data, std::size_t count);
+// The same for a matrix's storage, just after it was (re)sized.
+inline std::size_t advise_huge_pages(Eigen::MatrixXd& m) {
+  return advise_huge_pages(m.data(), static_cast<std::size_t>(m.size()));
+}
 
 }  // namespace touchcloud::gp_surface

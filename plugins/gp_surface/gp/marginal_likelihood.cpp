@@ -35,7 +35,7 @@ void MarginalLikelihood::factorise(const Hyperparameters& h) {
   const Eigen::Index n = x_.size();
   if (work_.rows() != n) {
     work_.resize(n, n);
-    advise_huge_pages(work_.data(), static_cast<std::size_t>(work_.size()));
+    advise_huge_pages(work_);
     factor_held_ = false;
   }
   if (factor_held_ && held_h_ == h) return;

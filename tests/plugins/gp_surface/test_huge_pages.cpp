@@ -48,7 +48,7 @@ long anon_huge_kb_at(const void* address) {
 
 TEST(GpHugePages, AdvisesOnlyWholeAlignedPagesInside) {
   Eigen::MatrixXd a(1200, 1200);  // 11 MB: at least four whole 2 MiB pages inside
-  const std::size_t bytes = advise_huge_pages(a.data(), static_cast<std::size_t>(a.size()));
+  const std::size_t bytes = advise_huge_pages(a);
   if (transparent_huge_pages().empty()) GTEST_SKIP() << "no transparent huge pages on this system";
   EXPECT_EQ(bytes % kHugePage, 0u);
   EXPECT_GE(bytes, 4 * kHugePage);
@@ -66,7 +66,7 @@ TEST(GpHugePages, ATouchedAdvisedBufferIsBackedByHugePages) {
   const std::string mode = transparent_huge_pages();
   if (mode != "always" && mode != "madvise") GTEST_SKIP() << "transparent huge pages are '" << mode << "' here";
   Eigen::MatrixXd a(2000, 2000);  // 32 MB, as a GP factor at n = 2,000
-  ASSERT_GT(advise_huge_pages(a.data(), static_cast<std::size_t>(a.size())), 0u);
+  ASSERT_GT(advise_huge_pages(a), 0u);
   a.setZero();
   EXPECT_GE(anon_huge_kb_at(a.data() + a.size() / 2), 2048) << "THP mode " << mode;
 }

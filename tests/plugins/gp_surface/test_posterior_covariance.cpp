@@ -5,6 +5,9 @@
 // VFE model with inducing points at the data against the exact model.
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include "gp/exact_gp.hpp"
@@ -28,6 +31,23 @@ Eigen::MatrixXd textbook_covariance(const Hyperparameters& h, const Eigen::Matri
 }
 
 double largest_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+// Touches of 60 points until the data run out, as the active loop makes
+// them: each update on a copy, the model before it kept as a snapshot.
+// `after(gp, n)` runs on the newest model after the touch that started at
+// n points; returns the older snapshots.
+std::vector<ExactGp> touch_by_touch(ExactGp& gp, const Eigen::MatrixX2d& xy, const Eigen::VectorXd& z,
+                                    const std::function<void(ExactGp&, Eigen::Index)>& after) {
+  std::vector<ExactGp> snapshots;
+  for (Eigen::Index n = gp.size(); n + 60 <= xy.rows(); n += 60) {
+    ExactGp next = gp;
+    next.add_points(xy.middleRows(n, 60), z.segment(n, 60));
+    snapshots.push_back(gp);
+    gp = next;
+    after(gp, n);
+  }
+  return snapshots;
+}
 
 TEST(GpPosteriorCovariance, EqualsTheTextbookFormulaAndItsDiagonalIsTheVariance) {
   const Eigen::MatrixX2d xy = test::random_xy(150, 31);
@@ -67,15 +87,11 @@ TEST(GpPosteriorCovariance, CachedAcrossTouchesAndSnapshotsEqualsAFreshSolve) {
   ExactGp gp(KernelKind::rbf, h);
   gp.fit(xy.topRows(160), z.head(160));
   gp.covariance(c);  // fills the cache
-  std::vector<ExactGp> snapshots;
-  for (Eigen::Index n = 160; n < 400; n += 60) {
-    ExactGp next = gp;
-    next.add_points(xy.middleRows(n, 60), z.segment(n, 60));
-    snapshots.push_back(gp);
-    gp = next;
-    if (n == 220) gp.variance(c);  // the variance path extends V first; the Gram catches up after
-    EXPECT_LT(largest_difference(gp.covariance(c), fresh(gp)), 1e-11) << n;
-  }
+  const std::vector<ExactGp> snapshots = touch_by_touch(gp, xy, z, [&](ExactGp& newest, Eigen::Index n) {
+    if (n == 220) newest.variance(c);  // the variance path extends V first; the Gram catches up after
+    EXPECT_LT(largest_difference(newest.covariance(c), fresh(newest)), 1e-11) << n;
+  });
+  EXPECT_EQ(snapshots.size(), 4u);
   for (const ExactGp& old : snapshots) EXPECT_LT(largest_difference(old.covariance(c), fresh(old)), 1e-11) << old.size();
 }
 
@@ -95,15 +111,11 @@ TEST(GpPosteriorCovariance, CandidateMeanFromTheCacheIsTheMean) {
   EXPECT_EQ(gp.candidate_mean(c), gp.mean(c)) << "no data: the prior mean";
   gp.fit(xy.topRows(160), z.head(160));
   EXPECT_LT(close(gp), 1e-12);
-  std::vector<ExactGp> snapshots;
-  for (Eigen::Index n = 160; n < 400; n += 60) {
-    ExactGp next = gp;
-    next.add_points(xy.middleRows(n, 60), z.segment(n, 60));
-    snapshots.push_back(gp);
-    gp = next;
-    if (n == 220) gp.covariance(c);  // the cache extended by another path first
-    EXPECT_LT(close(gp), 1e-12) << n;
-  }
+  const std::vector<ExactGp> snapshots = touch_by_touch(gp, xy, z, [&](ExactGp& newest, Eigen::Index n) {
+    if (n == 220) newest.covariance(c);  // the cache extended by another path first
+    EXPECT_LT(close(newest), 1e-12) << n;
+  });
+  EXPECT_EQ(snapshots.size(), 4u);
   for (const ExactGp& old : snapshots) EXPECT_LT(close(old), 1e-12) << old.size();
   ExactGpOptions uncached;
   uncached.max_cached_candidates = 0;

@@ -22,13 +22,16 @@ std::string to_string(UpdatePath path) { return path == UpdatePath::bordered ? "
 // L for every model of one lineage: rows [0, claimed) were written by the
 // newest model; a model of n points reads only the lower n x n corner.
 struct ExactGp::FactorStore {
-  // Rows from `in_use` on are written here, once, so that the pages later
-  // touches' bordered updates write (new rows across every column) are
-  // faulted in now rather than during an update; with huge pages
-  // (gp/huge_pages.hpp) that is a few dozen faults for the whole store.
+  // Rows from `in_use` on, and the columns above them, are written here,
+  // once, so that the pages later touches' bordered updates write (new rows
+  // across every column, and their mirror as work space) are faulted in now
+  // rather than during an update; with huge pages (gp/huge_pages.hpp) that
+  // is a few dozen faults for the whole store.
   FactorStore(Eigen::Index capacity, Eigen::Index in_use) : l(capacity, capacity) {
     advise_huge_pages(l);
-    l.bottomRows(capacity - std::min(in_use, capacity)).setZero();
+    const Eigen::Index used = std::min(in_use, capacity);
+    l.bottomRows(capacity - used).setZero();
+    l.topRightCorner(used, capacity - used).setZero();
   }
   Eigen::MatrixXd l;  // capacity x capacity
   std::mutex mutex;   // guards claimed and the candidate cache
@@ -167,13 +170,22 @@ UpdateReport ExactGp::add_points(const Eigen::MatrixX2d& xy_mm, const Eigen::Vec
     claim_rows(k);
     // [L 0; L21 L22] with L21 = K21 L^-T and L22 L22^T = A22 - L21 L21^T
     // (the Schur complement). K21 is written straight into the new rows and
-    // solved there from the right: no transposed copy.
+    // solved there from the right, or (left_side_update) its transpose is
+    // solved from the left in the store's unused upper triangle (the new
+    // rows' mirror, written when the store was made) and copied in.
     Eigen::MatrixXd& storage = store_->l;
     const double s2 = kernel_.hyperparameters().signal_variance_mm2;
     const double noise = kernel_.hyperparameters().noise_variance_mm2;
     auto l21 = storage.block(n, 0, k, n);
-    kernel_.fill_cross(p.x, p.y, x_, y_, l21);
-    solve_right_lower_transposed_in_place(storage.topLeftCorner(n, n), l21);
+    if (options_.left_side_update.value_or(left_side_solve_preferred(n))) {
+      auto l21_t = storage.block(0, n, n, k);
+      kernel_.fill_cross(x_, y_, p.x, p.y, l21_t);
+      solve_lower_in_place(storage.topLeftCorner(n, n), l21_t);
+      l21 = l21_t.transpose();
+    } else {
+      kernel_.fill_cross(p.x, p.y, x_, y_, l21);
+      solve_right_lower_transposed_in_place(storage.topLeftCorner(n, n), l21);
+    }
     auto schur = storage.block(n, n, k, k);
     kernel_.fill_lower(p.x, p.y, noise + factorisation_.jitter_mm2, schur);
     subtract_gram_lower(schur, l21);

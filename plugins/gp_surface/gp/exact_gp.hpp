@@ -19,6 +19,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -41,6 +42,11 @@ struct ExactGpOptions {
   // Candidate sets up to this many points have V = L^-1 K(X, C) cached for the
   // next query of the same set (memory capacity x m doubles).
   Eigen::Index max_cached_candidates = 1024;
+  // A bordered update's L21 = K21 L^-T from a left-side solve of its
+  // transpose (true) or a right-side one (false); unset: the faster form
+  // for the BLAS kernels in use (left_side_solve_preferred). The two agree
+  // to rounding.
+  std::optional<bool> left_side_update = std::nullopt;
 };
 
 enum class UpdatePath { bordered, refactorised };

@@ -95,6 +95,19 @@ void solve_right_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixX
   eigen_solve_right_transposed(l, b);
 }
 
+bool left_side_solve_preferred(Eigen::Index factor_rows) {
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  static const bool avx512_kernels = [] {
+    const std::string core = openblas_get_corename();
+    return core == "SkylakeX" || core == "Cooperlake";
+  }();
+  return avx512_kernels && factor_rows >= kOpenBlasFromRows;
+#else
+  (void)factor_rows;
+  return false;
+#endif
+}
+
 void subtract_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a) {
   if (c.rows() == 0 || a.cols() == 0) return;
 #ifdef TOUCHCLOUD_GP_OPENBLAS

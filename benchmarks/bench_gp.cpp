@@ -188,7 +188,13 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
   base->fit(s.xy.topRows(n0), s.z.head(n0));
   base->reserve(n0 + kTouches * kTouchPoints);
   const WorkspaceGrid grid = fox_mask_grid();
-  max_variance_cell(GpSurfaceModel(base, std::nullopt), grid, 1);  // the previous touch's choice (fills the cache)
+  // The previous touch's choice by the same strategy, as in the active loop:
+  // it fills the candidate cache (V, and for the footprint strategy V^T V,
+  // which each touch then only updates).
+  if (state.range(0) == 3)
+    footprint_variance_reduction_cell(GpSurfaceModel(base, std::nullopt), grid, {});
+  else
+    max_variance_cell(GpSurfaceModel(base, std::nullopt), grid, 1);
   // The surface_sampler's 200 x 200 evaluation grid over the workspace.
   const Eigen::VectorXd grid_xs = Eigen::VectorXd::LinSpaced(200, grid.x_mm[0], grid.x_mm[1]);
   const Eigen::VectorXd grid_ys = Eigen::VectorXd::LinSpaced(200, grid.y_mm[0], grid.y_mm[1]);

@@ -343,7 +343,7 @@ void ExactGp::covariance_at_cached(const Eigen::MatrixX2d& xy_mm, Eigen::MatrixX
   // The rows added since the last call: a rank-k update of the lower triangle.
   if (store.gram_rows < n_) {
     const auto v2 = store.v.middleRows(store.gram_rows, n_ - store.gram_rows);
-    store.gram.selfadjointView<Eigen::Lower>().rankUpdate(v2.transpose());
+    add_row_gram_lower(store.gram, v2);
     store.gram_rows = n_;
   }
   out.triangularView<Eigen::Lower>() -= store.gram;

@@ -32,6 +32,9 @@ bool left_side_solve_preferred(Eigen::Index factor_rows);
 // Lower triangle of c -= a a^T.
 void subtract_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a);
 
+// Lower triangle of c += rows^T rows (c: m x m, rows: k x m).
+void add_row_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& rows);
+
 // c -= a b.
 void subtract_product(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a,
                       const Eigen::Ref<const Eigen::MatrixXd>& b);

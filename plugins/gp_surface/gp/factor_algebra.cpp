@@ -42,8 +42,9 @@ void eigen_subtract_gram(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const E
 // a few units of rounding of their bounds) were set against Eigen's rounding.
 constexpr Eigen::Index kOpenBlasFromRows = 256;
 // A Gram matrix of candidates (the next-touch choice's V^T V) goes to
-// OpenBLAS from this many columns: at the workspaces' 144-196 cells its
-// AVX kernels take a 60-row touch in about a fifth of Eigen's SSE2 time.
+// OpenBLAS from this many columns: at 196 cells and a 60-row touch its
+// dsyrk takes 40 us with Cooperlake kernels and 63 us with Haswell's,
+// against Eigen's 133 us (one thread).
 constexpr Eigen::Index kOpenBlasFromGramColumns = 64;
 
 int as_int(Eigen::Index i) { return static_cast<int>(i); }

@@ -48,6 +48,15 @@ constexpr Eigen::Index kOpenBlasFromRows = 256;
 constexpr Eigen::Index kOpenBlasFromGramColumns = 64;
 
 int as_int(Eigen::Index i) { return static_cast<int>(i); }
+
+// Lower triangle of c += alpha a a^T (a_rows_are_terms false: a is m x k) or
+// c += alpha a^T a (true: a is k x m), one dsyrk.
+void openblas_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Eigen::MatrixXd>& a,
+                         bool a_rows_are_terms, double alpha) {
+  cblas_dsyrk(CblasColMajor, CblasLower, a_rows_are_terms ? CblasTrans : CblasNoTrans, as_int(c.rows()),
+              as_int(a_rows_are_terms ? a.rows() : a.cols()), alpha, a.data(), as_int(a.outerStride()), 1.0,
+              c.data(), as_int(c.outerStride()));
+}
 #endif
 
 }  // namespace
@@ -117,8 +126,7 @@ void subtract_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const E
   if (c.rows() == 0 || a.cols() == 0) return;
 #ifdef TOUCHCLOUD_GP_OPENBLAS
   if (a.cols() >= kOpenBlasFromRows) {
-    cblas_dsyrk(CblasColMajor, CblasLower, CblasNoTrans, as_int(c.rows()), as_int(a.cols()), -1.0, a.data(),
-                as_int(a.outerStride()), 1.0, c.data(), as_int(c.outerStride()));
+    openblas_gram_lower(c, a, false, -1.0);
     return;
   }
 #endif
@@ -129,8 +137,7 @@ void add_row_gram_lower(Eigen::Ref<Eigen::MatrixXd> c, const Eigen::Ref<const Ei
   if (c.rows() == 0 || rows.rows() == 0) return;
 #ifdef TOUCHCLOUD_GP_OPENBLAS
   if (c.rows() >= kOpenBlasFromGramColumns) {
-    cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, as_int(c.rows()), as_int(rows.rows()), 1.0, rows.data(),
-                as_int(rows.outerStride()), 1.0, c.data(), as_int(c.outerStride()));
+    openblas_gram_lower(c, rows, true, 1.0);
     return;
   }
 #endif

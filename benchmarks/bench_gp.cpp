@@ -17,6 +17,8 @@
 //                            by those rows, the mean's weights are solved),
 //                            /x/0 on the same model again (the choice's own
 //                            arithmetic only)
+//   BM_LatticeMeanSums       the sums behind the GP mean on the 200 x 200
+//                            lattice, by kernel and path (below)
 //   BM_ModelSelection        select_hyperparameters: /0 from scikit-learn's one
 //                            start (like for like with the peer), /1 from the
 //                            three default starts (the stage's cold selection),
@@ -40,6 +42,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -54,6 +57,8 @@
 #include "gp/exact_gp.hpp"
 #include "gp/factor_algebra.hpp"
 #include "gp/hyperparameter_search.hpp"
+#include "gp/kernel.hpp"
+#include "gp/matern_sums.hpp"
 #include "gp/marginal_likelihood.hpp"
 #include "gp/vector_exp.hpp"
 #include "gp_surface_model.hpp"
@@ -273,6 +278,69 @@ void BM_NextTouchChoice(benchmark::State& state) {
   state.counters["candidates"] = grid.cells();
 }
 BENCHMARK(BM_NextTouchChoice)->ArgsProduct({{0, 1}, {1, 0}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The GP mean over the surface_sampler's 200 x 200 lattice at n = 2,000, as
+// Kernel::weighted_sums computes it for a kernel with no separable form: /0
+// the RBF kernel, /1 Matern 5/2 (one fused pass per query where the CPU has
+// AVX2 and FMA, gp/matern_sums.hpp; AVX-512 where there is), /2 Matern 5/2
+// through kernel columns (fill_cross per query, then a dot product: the path
+// without SLEEF or AVX2), /3 the fused sums on AVX2 even where AVX-512 runs.
+// All on two threads, half the lattice each.
+void BM_LatticeMeanSums(benchmark::State& state) {
+  const Samples& s = samples();
+  const Eigen::VectorXd px = s.xy.col(0).head(kTrainingPoints), py = s.xy.col(1).head(kTrainingPoints);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd w(kTrainingPoints);
+  for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = normal(rng);
+  const WorkspaceGrid grid = fox_mask_grid();
+  const Eigen::Index side = 200;
+  Eigen::VectorXd qx(side * side), qy(side * side);
+  const Eigen::VectorXd xs = Eigen::VectorXd::LinSpaced(side, grid.x_mm[0], grid.x_mm[1]);
+  for (Eigen::Index i = 0; i < side; ++i) {
+    qx.segment(i * side, side).setConstant(xs[i]);
+    qy.segment(i * side, side) = xs;
+  }
+  const gp_surface::Kernel kernel(state.range(0) == 0 ? gp_surface::KernelKind::rbf : gp_surface::KernelKind::matern52,
+                                  kFoxMask);
+  const Eigen::Index half = qx.size() / 2;
+  if (state.range(0) == 3 && !gp_surface::simd_path_runs_here(gp_surface::SimdPath::avx2_fma)) {
+    state.SkipWithError("the fused AVX2 path does not run here");
+    return;
+  }
+  for (auto _ : state) {
+    if (state.range(0) < 2) {
+      benchmark::DoNotOptimize(kernel.weighted_sums(px, py, w, qx, qy).sum());
+      continue;
+    }
+    Eigen::VectorXd out(qx.size());
+    if (state.range(0) == 3) {  // the fused sums' AVX2 path, as on a CPU without AVX-512
+      const double c = 5.0 / (kFoxMask.lengthscale_mm * kFoxMask.lengthscale_mm);
+      const auto fused = [&](Eigen::Index first, Eigen::Index last) {
+        gp_surface::matern52_unit_sums(px.data(), py.data(), w.data(), px.size(), qx.data(), qy.data(), first, last, c,
+                                       out.data(), gp_surface::SimdPath::avx2_fma);
+      };
+      std::future<void> other = std::async(std::launch::async, fused, Eigen::Index{0}, half);
+      fused(half, qx.size());
+      other.get();
+      benchmark::DoNotOptimize(out.sum());
+      continue;
+    }
+    const auto columns = [&](Eigen::Index first, Eigen::Index last) {
+      Eigen::MatrixXd column(kTrainingPoints, 1);
+      for (Eigen::Index j = first; j < last; ++j) {
+        kernel.fill_cross(px, py, qx.segment(j, 1), qy.segment(j, 1), column);
+        out[j] = column.col(0).dot(w);
+      }
+    };
+    std::future<void> other = std::async(std::launch::async, columns, Eigen::Index{0}, half);
+    columns(half, qx.size());
+    other.get();
+    benchmark::DoNotOptimize(out.sum());
+  }
+  state.counters["pairs"] = static_cast<double>(kTrainingPoints) * static_cast<double>(qx.size());
+}
+BENCHMARK(BM_LatticeMeanSums)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_ModelSelection(benchmark::State& state) {
   const Samples data = selection_data();

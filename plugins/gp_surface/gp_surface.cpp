@@ -21,6 +21,8 @@
 #include "gp/inducing_points.hpp"
 #include "gp/point_subset.hpp"
 #include "gp/training_data.hpp"
+#include "gp/simd_path.hpp"
+#include "gp/vector_exp.hpp"
 #include "gp_surface_model.hpp"
 #include "sparse_surface_model.hpp"
 #include "touchcloud/plugin.hpp"
@@ -80,6 +82,12 @@ class GpSurface final : public Stage {
     gp_surface::set_factor_algebra_threads(blas_threads_.value_or(0));
     ctx.used("blas_threads", static_cast<std::int64_t>(gp_surface::factor_algebra_threads()));
     ctx.used("dense_algebra", std::string(gp_surface::factor_algebra_backend()));
+    ctx.used("kernel_exp", std::string(gp_surface::vector_exp_path()));
+    if (kernel_ == gp_surface::KernelKind::matern52) {
+      const gp_surface::SimdPath sums = gp_surface::fastest_simd_path();
+      ctx.used("matern_mean_sums",
+               std::string(sums == gp_surface::SimdPath::none ? "kernel columns (Eigen)" : gp_surface::to_string(sums)));
+    }
   }
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");

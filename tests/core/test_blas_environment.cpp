@@ -1,7 +1,8 @@
 // OpenBLAS's kernels as the CLI sets them up: the user's OPENBLAS_CORETYPE
 // is kept; without one, the kernel touchcloud prefers for this CPU is the one
 // the GP plugin's OpenBLAS runs (recorded in summary.json), and the choice is
-// in the versions.
+// in the versions; so are the SIMD paths of the GP kernel's exponentials and
+// (with the Matern kernel) of its mean's sums.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -15,19 +16,23 @@ namespace fs = std::filesystem;
 namespace {
 
 // Two touches of the main job: enough to load and use OpenBLAS.
-nlohmann::json short_main_job(const fs::path& out, const std::string& env) {
+nlohmann::json short_main_job(const fs::path& out, const std::string& env, const std::string& kernel = "rbf") {
   const auto r = test::run_cli({"run", (test::source_dir() / "pipelines/fox_mask_active.yaml").string(), "--seed", "1",
-                                "--quiet", "--out", out.string(), "--set", "explore.max_iterations=2"},
+                                "--quiet", "--out", out.string(), "--set", "explore.max_iterations=2", "--set",
+                                "fit.kernel=" + kernel},
                                env);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return nlohmann::json::parse(test::read_file(out / "summary.json"));
 }
 
-std::string dense_algebra(const nlohmann::json& summary) {
+// The fit stage's recorded `used` value; "(absent)" where it has none.
+std::string fit_used(const nlohmann::json& summary, const std::string& key) {
   for (const auto& stage : summary.at("stages"))
-    if (stage.at("id") == "fit") return stage.at("used").at("dense_algebra");
+    if (stage.at("id") == "fit") return stage.at("used").value(key, "(absent)");
   return "";
 }
+
+std::string dense_algebra(const nlohmann::json& summary) { return fit_used(summary, "dense_algebra"); }
 
 }  // namespace
 
@@ -53,4 +58,14 @@ TEST(BlasEnvironment, OpenBlasRunsTheKernelChosenForThisCpu) {
     EXPECT_NE(algebra.find(" " + preferred + " "), std::string::npos) << algebra;
     EXPECT_EQ(recorded, preferred + " (set by touchcloud from the CPU's instruction sets)");
   }
+}
+
+TEST(BlasEnvironment, TheKernelsSimdPathsAreRecorded) {
+  test::TempDir dir;
+  const auto rbf = short_main_job(dir / "rbf", "");
+  const std::string exp = fit_used(rbf, "kernel_exp");
+  EXPECT_TRUE(exp == "avx2+fma (SLEEF)" || exp == "sse2 (Eigen)") << exp;
+  EXPECT_EQ(fit_used(rbf, "matern_mean_sums"), "(absent)") << "the RBF mean on the lattice is separable";
+  const std::string sums = fit_used(short_main_job(dir / "matern", "", "matern52"), "matern_mean_sums");
+  EXPECT_TRUE(sums == "avx512f (SLEEF)" || sums == "avx2+fma (SLEEF)" || sums == "kernel columns (Eigen)") << sums;
 }

@@ -1,0 +1,32 @@
+#include "gp/simd_path.hpp"
+
+namespace touchcloud::gp_surface {
+
+bool simd_path_runs_here(SimdPath path) {
+  if (path == SimdPath::none) return true;
+#if defined(TOUCHCLOUD_GP_SLEEF) && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  static const bool avx2_fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  static const bool avx512f = __builtin_cpu_supports("avx512f");
+  return path == SimdPath::avx512f ? avx512f : avx2_fma;
+#else
+  return false;
+#endif
+}
+
+SimdPath fastest_simd_path() {
+  static const SimdPath fastest = simd_path_runs_here(SimdPath::avx512f)    ? SimdPath::avx512f
+                                  : simd_path_runs_here(SimdPath::avx2_fma) ? SimdPath::avx2_fma
+                                                                            : SimdPath::none;
+  return fastest;
+}
+
+const char* to_string(SimdPath path) {
+  switch (path) {
+    case SimdPath::avx512f: return "avx512f (SLEEF)";
+    case SimdPath::avx2_fma: return "avx2+fma (SLEEF)";
+    case SimdPath::none: break;
+  }
+  return "none";
+}
+
+}  // namespace touchcloud::gp_surface

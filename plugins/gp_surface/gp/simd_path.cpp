@@ -13,10 +13,15 @@ bool simd_path_runs_here(SimdPath path) {
 #endif
 }
 
+std::vector<SimdPath> simd_paths_here() {
+  std::vector<SimdPath> paths;
+  for (SimdPath p : {SimdPath::none, SimdPath::avx2_fma, SimdPath::avx512f})
+    if (simd_path_runs_here(p)) paths.push_back(p);
+  return paths;
+}
+
 SimdPath fastest_simd_path() {
-  static const SimdPath fastest = simd_path_runs_here(SimdPath::avx512f)    ? SimdPath::avx512f
-                                  : simd_path_runs_here(SimdPath::avx2_fma) ? SimdPath::avx2_fma
-                                                                            : SimdPath::none;
+  static const SimdPath fastest = simd_paths_here().back();
   return fastest;
 }
 

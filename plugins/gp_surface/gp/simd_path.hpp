@@ -3,6 +3,8 @@
 // compiled for its functions alone and taken after a CPU check.
 #pragma once
 
+#include <vector>
+
 namespace touchcloud::gp_surface {
 
 // Slowest first; none: no SLEEF in this build, or a CPU with neither.
@@ -10,6 +12,8 @@ enum class SimdPath { none, avx2_fma, avx512f };
 
 // Built with SLEEF, and the CPU has the instructions (none: always true).
 bool simd_path_runs_here(SimdPath path);
+// Every path that runs here, slowest first (none always first).
+std::vector<SimdPath> simd_paths_here();
 // The fastest path that runs here.
 SimdPath fastest_simd_path();
 // "avx512f (SLEEF)", "avx2+fma (SLEEF)" or "none".

@@ -27,16 +27,15 @@ long double reference_sum(const Eigen::VectorXd& px, const Eigen::VectorXd& py, 
   return sum;
 }
 
-// Each fused path this CPU runs, then one it does not (nothing written).
-std::vector<SimdPath> paths_to_test() {
-  std::vector<SimdPath> paths;
-  for (SimdPath p : {SimdPath::avx512f, SimdPath::avx2_fma})
-    if (simd_path_runs_here(p)) paths.push_back(p);
+// Each fused path this build and CPU run.
+std::vector<SimdPath> fused_paths_here() {
+  std::vector<SimdPath> paths = simd_paths_here();
+  paths.erase(paths.begin());  // none
   return paths;
 }
 
 TEST(GpMaternSums, EqualALongDoubleReferenceForEveryTailLength) {
-  const std::vector<SimdPath> paths = paths_to_test();
+  const std::vector<SimdPath> paths = fused_paths_here();
   if (paths.empty()) GTEST_SKIP() << "no fused path in this build or on this CPU; the kernel column path serves";
   for (SimdPath path : paths) {
   std::mt19937_64 rng(5);

@@ -25,6 +25,7 @@
 #include "gp/vector_exp.hpp"
 #include "gp_surface_model.hpp"
 #include "sparse_surface_model.hpp"
+#include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 
@@ -41,6 +42,7 @@ class GpSurface final : public Stage {
   int screening_points_ = 500;
   double initial_lengthscale_mm_ = 10.0;
   double max_noise_mm_ = 1.0;
+  double min_noise_mm_ = 0.0;
   std::optional<int> blas_threads_;
 
   Eigen::MatrixX2d xy_{0, 2};
@@ -74,9 +76,17 @@ class GpSurface final : public Stage {
     p.add("max_noise_mm", max_noise_mm_, 1.0).unit("mm").above(0.0)
         .doc("largest noise standard deviation model selection may choose (touch points are accurate to a few "
              "tenths of a mm); keeps few or rough points from being explained as noise around a flat mean");
+    p.add("min_noise_mm", min_noise_mm_, 0.0).unit("mm").at_least(0.0)
+        .doc("smallest noise standard deviation model selection may choose (0: no floor): a sensor's "
+             "repeatability between touches; keeps a rough kernel from passing exactly through neighbouring points "
+             "of two touches that disagree, and swinging far off between them");
     p.add("blas_threads", blas_threads_).at_least(1).unit("threads").needs("OpenBLAS", gp_surface::factor_algebra_threads_settable())
         .doc("threads of the factorisations and solves (OpenBLAS: one count for the whole process); not set: "
              "OpenBLAS's own, a thread per core; 1 leaves the other cores to background stages");
+  }
+  void on_check(RunContext&) override {
+    if (min_noise_mm_ >= max_noise_mm_)
+      throw ParameterError("min_noise_mm", "must be below max_noise_mm (" + number_text(max_noise_mm_) + " mm)");
   }
   void on_configure(RunContext& ctx) override {
     gp_surface::set_factor_algebra_threads(blas_threads_.value_or(0));
@@ -121,6 +131,7 @@ class GpSurface final : public Stage {
     options.kernel = kernel_;
     options.screening_points = screening_points_;
     options.bounds.noise_sd_max = max_noise_mm_;
+    options.bounds.noise_sd_min = min_noise_mm_;
     options.stop_gain = 1e-6;  // hyperparameters to ~0.1 %: the surface cannot tell them apart
     if (selected_at_ > 0) {
       options.start_hyperparameters = {last_};

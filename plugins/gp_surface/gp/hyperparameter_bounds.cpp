@@ -73,6 +73,12 @@ void BoundsRules::validate() const {
     msg << "GP hyperparameter bounds: noise_sd_max (" << noise_sd_max << ") must be > 0 (infinite: no cap)";
     throw InputError(msg.str());
   }
+  if (!(noise_sd_min >= 0) || !(noise_sd_min < noise_sd_max)) {
+    std::ostringstream msg;
+    msg << "GP hyperparameter bounds: noise_sd_min (" << noise_sd_min << ") must be >= 0 (0: no floor) and below "
+        << "noise_sd_max (" << noise_sd_max << ")";
+    throw InputError(msg.str());
+  }
 }
 
 bool HyperparameterBounds::contains(const Hyperparameters& h) const {
@@ -88,7 +94,8 @@ HyperparameterBounds bounds_from_scales(const DataScales& s, const BoundsRules& 
   b.upper.lengthscale_mm = std::max(b.lower.lengthscale_mm, rules.lengthscale_extent_multiple * s.extent_mm);
   b.lower.signal_variance_mm2 = rules.signal_variance_low * s.z_variance_mm2;
   b.upper.signal_variance_mm2 = rules.signal_variance_high * s.z_variance_mm2;
-  b.lower.noise_variance_mm2 = rules.noise_variance_low * s.z_variance_mm2;
+  b.lower.noise_variance_mm2 =
+      std::max(rules.noise_variance_low * s.z_variance_mm2, rules.noise_sd_min * rules.noise_sd_min);
   b.upper.noise_variance_mm2 = std::max(b.lower.noise_variance_mm2,
                                         std::min(rules.noise_variance_high * s.z_variance_mm2,
                                                  rules.noise_sd_max * rules.noise_sd_max));

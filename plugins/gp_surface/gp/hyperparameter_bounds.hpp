@@ -31,6 +31,11 @@ struct BoundsRules {
   // sensor's accuracy): without it, few or rough points can be explained as
   // all noise around a flat mean. Infinite: no cap.
   double noise_sd_max = std::numeric_limits<double>::infinity();
+  // An absolute floor on it (a sensor's repeatability from touch to touch):
+  // without it, a rough kernel can explain noisy touches as a noise-free
+  // surface that passes through two points 0.2 mm apart and 2 mm apart in z,
+  // and swings by centimetres between them. 0: no floor.
+  double noise_sd_min = 0.0;
   void validate() const;  // InputError naming the field
 };
 

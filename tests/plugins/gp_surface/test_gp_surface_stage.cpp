@@ -65,6 +65,30 @@ TEST_F(GpSurfaceStage, ReportsSelectionsAndBorderedUpdates) {
   for (double l : r.record.metrics.at("fit.lengthscale_mm").values) EXPECT_GT(l, 0);
 }
 
+// min_noise_mm floors the noise that selection may choose (a sensor's
+// repeatability): the noise-free patches select far less noise without it,
+// and at least the floor with it. A floor at or above max_noise_mm is
+// refused when the pipeline is checked, naming both.
+TEST_F(GpSurfaceStage, MinNoiseFloorsTheSelectedNoise) {
+  const auto selected_noise = [](const RunResult& r) {
+    const auto& paths = r.record.metrics.at("fit.update_path").values;
+    const auto& noise = r.record.metrics.at("fit.noise_variance_mm2").values;
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < paths.size(); ++i)
+      if (paths[i] == 3) least = std::min(least, noise[i]);
+    return least;
+  };
+  EXPECT_LT(selected_noise(run_touches("{kernel: matern52, reselect_growth: 0}", 3)), 0.01);
+  EXPECT_GE(selected_noise(run_touches("{kernel: matern52, reselect_growth: 0, min_noise_mm: 0.2}", 3)), 0.04);
+  try {
+    run_touches("{min_noise_mm: 1.0, max_noise_mm: 1.0}", 1);
+    ADD_FAILURE() << "a floor equal to the cap was accepted";
+  } catch (const InputError& e) {  // the stage's ParameterError, with the file and line
+    EXPECT_NE(std::string(e.what()).find("min_noise_mm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("max_noise_mm"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(GpSurfaceStage, SparseWithEveryPointInducingMatchesExact) {
   // The six patches hold fewer than 1,000 points, so method sparse takes
   // them all as inducing points and must give the exact stage's surface.

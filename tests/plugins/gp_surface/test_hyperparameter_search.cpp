@@ -64,6 +64,30 @@ TEST(GpHyperparameterSearch, NoiseCapBoundsTheSelectedNoise) {
   EXPECT_THROW(select_hyperparameters(xy, z, capped), InputError);
 }
 
+// The noise floor (a sensor's repeatability): noise-free data, which the
+// likelihood explains with next to no noise, get at least the floor, and the
+// floor is a bound; a negative floor or one at the cap is an InputError.
+TEST(GpHyperparameterSearch, NoiseFloorBoundsTheSelectedNoise) {
+  const Eigen::MatrixX2d xy = random_xy(150, 43);
+  const Eigen::VectorXd z = heights(xy);
+  for (KernelKind kind : {KernelKind::rbf, KernelKind::matern52}) {
+    SearchOptions options;
+    options.kernel = kind;
+    EXPECT_LT(select_hyperparameters(xy, z, options).hyperparameters.noise_variance_mm2, 1e-3) << to_string(kind);
+    options.bounds.noise_sd_min = 0.1;
+    const SearchResult r = select_hyperparameters(xy, z, options);
+    EXPECT_DOUBLE_EQ(r.bounds.lower.noise_variance_mm2, 0.01);
+    EXPECT_GE(r.hyperparameters.noise_variance_mm2, 0.01) << to_string(kind);
+    EXPECT_TRUE(std::isfinite(r.lml));
+  }
+  SearchOptions bad;
+  bad.bounds.noise_sd_min = -0.1;
+  EXPECT_THROW(select_hyperparameters(xy, z, bad), InputError);
+  bad.bounds.noise_sd_min = 0.5;
+  bad.bounds.noise_sd_max = 0.5;
+  EXPECT_THROW(select_hyperparameters(xy, z, bad), InputError);
+}
+
 // Case 10: the result is no worse than the first start, than any start point,
 // or than any start's own optimum; it is a local maximum of the LML.
 TEST(GpHyperparameterSearch, NeverWorseThanAnyStartOrRestart) {

@@ -38,7 +38,8 @@ class Kernel {
 
   // K(P, Q)^T w: for each query q_j, the sum over p_i of w_i k(p_i, q_j) (a
   // GP mean). One query's kernel column at a time, so it stays in cache and
-  // no P x Q matrix is made; many queries go on two threads.
+  // no P x Q matrix is made (Matern 5/2: no column at all where the fused
+  // sums run, gp/matern_sums.hpp); many queries go on two threads.
   Eigen::VectorXd weighted_sums(const Eigen::VectorXd& px, const Eigen::VectorXd& py, const Eigen::VectorXd& w,
                                 const Eigen::Ref<const Eigen::VectorXd>& qx,
                                 const Eigen::Ref<const Eigen::VectorXd>& qy) const;

@@ -1,6 +1,5 @@
 #include "gp/matern_sums.hpp"
 
-
 #if defined(TOUCHCLOUD_GP_SLEEF) && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TOUCHCLOUD_GP_MATERN_FUSED 1
 #include <immintrin.h>

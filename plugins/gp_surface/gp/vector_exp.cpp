@@ -29,7 +29,7 @@ __attribute__((target("avx2,fma"))) void exp_avx2(double* v, Eigen::Index n) {
 
 void exp_in_place(Eigen::Ref<Eigen::ArrayXd> v, SimdPath path) {
 #ifdef TOUCHCLOUD_GP_EXP_SLEEF
-  if (v.innerStride() == 1 && path == SimdPath::avx2_fma && simd_path_runs_here(path)) {
+  if (v.innerStride() == 1 && path != SimdPath::none && simd_path_runs_here(SimdPath::avx2_fma)) {
     exp_avx2(v.data(), v.size());
     return;
   }

@@ -15,8 +15,8 @@
 
 namespace touchcloud::gp_surface {
 
-// `path`: avx2_fma unless a test asks for none (Eigen's exp); where AVX2
-// cannot run, Eigen's.
+// `path`: none is Eigen's exp (tests ask for it); any other takes SLEEF's
+// AVX2 exp where that runs, Eigen's where not.
 void exp_in_place(Eigen::Ref<Eigen::ArrayXd> v, SimdPath path = SimdPath::avx2_fma);
 
 // The path exp_in_place takes on this CPU: "avx2+fma (SLEEF)" or

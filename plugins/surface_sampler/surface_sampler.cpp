@@ -4,8 +4,12 @@
 // computed only when `max_sd_mm` asks to mask where the model is unsure.
 // Where the mean runs far outside the z range of the data it was fitted to
 // (an object the sensor could not reach everywhere), the points are masked
-// or the run fails, never passed on silently.
+// or the run fails, never passed on silently. Given the fitted points, the
+// mean is also held against the points measured beside each lattice point
+// (near_data.hpp): a local swing is warned of, or masked, or fails the run.
 #include <sstream>
+
+#include "near_data.hpp"
 
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
@@ -23,7 +27,10 @@ class SurfaceSampler final : public Stage {
   double outside_margin_mm_ = 20.0;
   OutsideData outside_ = OutsideData::Mask;
   std::optional<double> max_sd_mm_;
+  double near_radius_mm_ = 2.0, near_margin_mm_ = 5.0;
+  OutsideData near_ = OutsideData::Keep;
   long masked_total_ = 0;
+  bool near_warned_ = false;
 
   void declare_parameters(ParameterSet& p) override {
     workspace_.declare(p, false);
@@ -38,9 +45,20 @@ class SurfaceSampler final : public Stage {
     p.add("max_sd_mm", max_sd_mm_).unit("mm").above(0)
         .doc("also drop points whose posterior standard deviation exceeds this (computes the variance on the "
              "lattice, far slower than the mean); not set: no such mask");
+    p.add("near_data_radius_mm", near_radius_mm_, 2.0).unit("mm").above(0)
+        .doc("with the fitted points wired: the points within this (x, y) distance of a lattice point are its "
+             "neighbours (about one marker spacing)");
+    p.add("near_data_margin_mm", near_margin_mm_, 5.0).unit("mm").above(0)
+        .doc("a mean further than this above or below every neighbouring fitted point swings off its data");
+    p.add("near_data", near_, OutsideData::Keep,
+          {{"mask", OutsideData::Mask}, {"error", OutsideData::Error}, {"keep", OutsideData::Keep}})
+        .doc("points whose mean swings off the neighbouring data: kept with a warning (keep), dropped with a "
+             "warning (mask), or fail the run (error)");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<SurfaceModelPtr>("surface", "the fitted surface");
+    ports.optional_input<CloudConstPtr>("points", "the points the surface was fitted to, base frame (wire as "
+                                        "dedup.accumulated): the mean is checked against those beside it");
     ports.output<CloudConstPtr>("cloud", "surface points (x, y, mean z), base frame, mm");
   }
   void on_check(RunContext&) override { area_ = workspace_.resolve(); }
@@ -63,10 +81,20 @@ class SurfaceSampler final : public Stage {
     const Eigen::MatrixXd sd =
         max_sd_mm_ ? Eigen::MatrixXd(surface->variance_on_lattice(xs, ys).cwiseMax(0.0).cwiseSqrt()) : Eigen::MatrixXd();
     const auto range = surface->data_z_range_mm();
+    std::optional<surface_sampler::NearDataRange> near;
+    if (const auto* points = io.optional_input<CloudConstPtr>("points"); points && *points) {
+      try {
+        near = surface_sampler::near_data_range(xs, ys, **points, near_radius_mm_);
+      } catch (const InputError& e) {
+        throw RunError(std::string("the fitted points cannot be checked against: ") + e.what());
+      }
+    }
     auto cloud = std::make_shared<PointCloud>();
     cloud->reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
-    long outside = 0, unsure = 0;
+    long outside = 0, unsure = 0, off = 0;
     double worst = 0;  // furthest mean outside the data's range, mm
+    double worst_off = 0;
+    std::array<double, 3> worst_off_at{};
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const double zij = z(i, j);
@@ -81,6 +109,18 @@ class SurfaceSampler final : public Stage {
             if (outside_ == OutsideData::Mask) continue;
           }
         }
+        if (near) {
+          const double beyond = near->beyond(i, j, zij);
+          if (beyond > near_margin_mm_) {
+            ++off;
+            if (beyond > worst_off) {
+              worst_off = beyond;
+              worst_off_at = {xs[i], ys[j], zij};
+            }
+            if (near_ == OutsideData::Error) throw RunError(off_data_message(xs[i], ys[j], zij, *near, i, j));
+            if (near_ == OutsideData::Mask) continue;
+          }
+        }
         if (max_sd_mm_ && sd(i, j) > *max_sd_mm_) {
           ++unsure;
           continue;
@@ -88,6 +128,7 @@ class SurfaceSampler final : public Stage {
         cloud->push_back(pcl::PointXYZ(static_cast<float>(xs[i]), static_cast<float>(ys[j]), static_cast<float>(zij)));
       }
     report(outside, unsure, worst, ctx);
+    if (near) report_off_data(off, worst_off, worst_off_at, ctx);
     last_surface_ = surface;
     last_cloud_ = cloud;
     io.output("cloud", last_cloud_);
@@ -98,6 +139,30 @@ class SurfaceSampler final : public Stage {
       << outside_margin_mm_ << " outside the fitted points' z range [" << range[0] << ", " << range[1]
       << "] mm: the model extrapolates (an object the sensor could not reach everywhere?)";
     return s.str();
+  }
+
+  std::string off_data_message(double x, double y, double z, const surface_sampler::NearDataRange& near, int i,
+                               int j) const {
+    std::ostringstream s;
+    s << "the surface mean at (" << x << ", " << y << ") mm is z = " << z << " mm, more than near_data_margin_mm "
+      << near_margin_mm_ << " outside the z range [" << near.lo(i, j) << ", " << near.hi(i, j)
+      << "] mm of the fitted points within " << near_radius_mm_ << " mm of it: the surface swings off its data";
+    return s.str();
+  }
+
+  // Per call: how many points swing off the data beside them, and a warning
+  // the first time any do.
+  void report_off_data(long off, double worst, const std::array<double, 3>& at, RunContext& ctx) {
+    ctx.metric("off_data_points", static_cast<double>(off), "points");
+    if (off == 0 || near_warned_) return;
+    near_warned_ = true;
+    std::ostringstream s;
+    s << off << " lattice points lie more than " << near_margin_mm_ << " mm outside the z range of the fitted points "
+      << "within " << near_radius_mm_ << " mm of them, up to " << worst << " mm (z = " << at[2] << " mm at ("
+      << at[0] << ", " << at[1] << ") mm): " << (near_ == OutsideData::Mask ? "dropped" : "kept")
+      << "; the surface swings off its data there";
+    ctx.log("warning: " + s.str());
+    ctx.note("off_data", s.str());
   }
 
   // Per call: how many points were masked, and a warning the first time.

@@ -140,3 +140,90 @@ TEST(SurfaceSamplerStage, TheSameModelAgainGivesTheSamePointsWithoutEvaluating) 
   EXPECT_FLOAT_EQ(b->points[60].z, 5.0f);
   EXPECT_EQ(second->evaluations, 1);
 }
+
+namespace {
+// z = 0 but for a spike of 8 mm over 4.5 <= x <= 5.5 (the nodes x = 5), the
+// way a GP with next to no noise swung between two close touches' points.
+class SpikedSurface final : public SurfaceModel {
+ public:
+  std::size_t training_size() const override { return 11; }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override {
+    return (xy.col(0).array() - 5.0).abs().unaryExpr([](double d) { return d <= 0.5 ? 8.0 : 0.0; });
+  }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return Eigen::VectorXd::Zero(xy.rows()); }
+  // Inside the data's z range overall: the global check cannot see the spike.
+  std::optional<std::array<double, 2>> data_z_range_mm() const override { return std::array<double, 2>{0, 10}; }
+  std::map<std::string, double> hyperparameters() const override { return {}; }
+};
+
+// Fitted points at z = 0 along y = 1 for x in [x0, x1] mm, 1 mm apart.
+CloudConstPtr flat_points(double x0, double x1) {
+  auto c = std::make_shared<PointCloud>();
+  for (double x = x0; x <= x1; x += 1) c->push_back(pcl::PointXYZ(static_cast<float>(x), 1.0f, 0.0f));
+  return c;
+}
+
+std::map<std::string, ParamValue> spike_params(std::map<std::string, ParamValue> more) {
+  more["workspace_x_mm"] = std::vector<double>{0, 10};
+  more["workspace_y_mm"] = std::vector<double>{0, 2};
+  more["resolution"] = std::vector<std::int64_t>{11, 3};
+  return more;
+}
+
+CloudConstPtr sample_spike(touchcloud::test::StageHarness& stage, const CloudConstPtr& points) {
+  stage.configure();
+  return stage.process_one<CloudConstPtr>(
+      {{"surface", SurfaceModelPtr(std::make_shared<SpikedSurface>())}, {"points", points}}, "cloud");
+}
+}  // namespace
+
+// Given the fitted points, a mean more than near_data_margin_mm off every
+// point within near_data_radius_mm of it is counted and warned of (kept by
+// default), dropped, or fails the run; the global z range lets it through.
+TEST(SurfaceSamplerStage, AMeanSwingingOffTheDataBesideItIsCountedMaskedOrAnError) {
+  const CloudConstPtr points = flat_points(0, 10);
+  touchcloud::test::StageHarness keep("surface_sampler", spike_params({}));
+  EXPECT_EQ(sample_spike(keep, points)->size(), 33u);
+  EXPECT_EQ(keep.metric("off_data_points"), 3);  // x = 5 on the three rows
+  EXPECT_EQ(keep.metric("extrapolated_points"), 0);
+  ASSERT_EQ(keep.record().notes.count("stage.off_data"), 1u);
+  EXPECT_NE(keep.record().notes.at("stage.off_data").find("up to 8 mm (z = 8 mm at (5, 0) mm)"), std::string::npos)
+      << keep.record().notes.at("stage.off_data");
+
+  touchcloud::test::StageHarness mask("surface_sampler", spike_params({{"near_data", std::string("mask")}}));
+  const CloudConstPtr masked = sample_spike(mask, points);
+  EXPECT_EQ(masked->size(), 30u);
+  for (const auto& q : masked->points) EXPECT_EQ(q.z, 0.0f);
+
+  touchcloud::test::StageHarness error("surface_sampler", spike_params({{"near_data", std::string("error")}}));
+  try {
+    sample_spike(error, points);
+    FAIL() << "a surface swinging off its data passed";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("at (5, 0) mm is z = 8 mm, more than near_data_margin_mm 5 outside the z "
+                                         "range [0, 0] mm of the fitted points within 2 mm of it"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Where no fitted point lies within the radius the check has nothing to
+// hold the mean against (the global range still applies); a wider margin
+// lets the spike pass; with no points wired there is no check.
+TEST(SurfaceSamplerStage, TheNearDataCheckNeedsNeighboursAndAMeanBeyondTheMargin) {
+  touchcloud::test::StageHarness far("surface_sampler", spike_params({{"near_data", std::string("error")}}));
+  EXPECT_EQ(sample_spike(far, flat_points(0, 2))->size(), 33u);  // the nearest point to x = 5: 3 mm off
+  EXPECT_EQ(far.metric("off_data_points"), 0);
+
+  touchcloud::test::StageHarness wide(
+      "surface_sampler", spike_params({{"near_data", std::string("error")}, {"near_data_margin_mm", 8.5}}));
+  EXPECT_EQ(sample_spike(wide, flat_points(0, 10))->size(), 33u);
+
+  touchcloud::test::StageHarness unwired("surface_sampler", spike_params({{"near_data", std::string("error")}}));
+  unwired.configure();
+  EXPECT_EQ(unwired.process_one<CloudConstPtr>({{"surface", SurfaceModelPtr(std::make_shared<SpikedSurface>())}},
+                                               "cloud")
+                ->size(),
+            33u);
+  EXPECT_EQ(unwired.record().metrics.count("stage.off_data_points"), 0u);
+}

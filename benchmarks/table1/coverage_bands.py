@@ -81,6 +81,11 @@ def bands_after(args, np, obj, sensor, touches, work):
     for k, (lo, hi, share) in enumerate(shares):
         mean = means.get(f"t{touches}_band{k}.pcd")
         rows.append((lo, hi, share, mean))
+    # The bands must add up to the run's own score (the same ground-truth
+    # samples); otherwise the table would split some other number.
+    total = sum(share * mean for _, _, share, mean in rows if mean is not None)
+    if abs(total - chamfer) > 1e-6 * max(1.0, chamfer):
+        sys.exit(f"{obj}, {sensor}, {touches} touches: the bands add up to {total} mm, the run scored {chamfer} mm")
     return chamfer, len(points), rows
 
 

@@ -11,9 +11,20 @@
 
 namespace touchcloud::dedup {
 
+// How a new point overlaps a kept one.
+enum class OverlapTest {
+  distance,  // Eq. 7: within the threshold in 3D
+  // A height field whose errors lie above the surface (the gel's elastic
+  // spread lifts markers beside a contact, it never sinks them): a kept point
+  // within the threshold in (x, y) covers a new one unless the new one lies
+  // more than the threshold below it, which is better evidence of the surface.
+  height,
+};
+
 class OverlapFilter {
  public:
-  explicit OverlapFilter(double threshold_mm) : threshold_mm_(threshold_mm) {}
+  explicit OverlapFilter(double threshold_mm, OverlapTest test = OverlapTest::distance)
+      : threshold_mm_(threshold_mm), test_(test) {}
 
   // Adds the points of `touch` that do not overlap what is kept; returns them.
   CloudPtr add(const PointCloud& touch);
@@ -23,9 +34,15 @@ class OverlapFilter {
   const PointCloud& kept() const { return kept_; }
 
  private:
+  bool overlaps(const pcl::PointXYZ& p);
+
   double threshold_mm_;
+  OverlapTest test_;
   PointCloud kept_;
-  pcl::KdTreeFLANN<pcl::PointXYZ> index_;  // over kept_, rebuilt after each touch
+  // Over kept_ (height: over its (x, y) with z = 0), rebuilt after each touch.
+  pcl::KdTreeFLANN<pcl::PointXYZ> index_;
+  std::vector<int> found_;
+  std::vector<float> squared_;
 };
 
 }  // namespace touchcloud::dedup

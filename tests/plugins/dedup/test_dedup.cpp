@@ -48,3 +48,27 @@ TEST(Dedup, DisabledKeepsEverything) {
   EXPECT_EQ(f.add_all(grid(3, 1.0f, 0))->size(), 9u);
   EXPECT_EQ(f.kept().size(), 18u);
 }
+
+// overlap: height. Kept: (0, 0, 5). A new point within 1.8 mm in (x, y) is
+// covered at any height above 5 - 1.8 mm (Eq. 7's 3D test keeps one 2 mm
+// above); one more than 1.8 mm below it is kept; beyond 1.8 mm in (x, y) it
+// is new at any height.
+TEST(Dedup, HeightOverlapCoversPointsAboveAKeptOneAndKeepsThoseBelow) {
+  PointCloud first;
+  first.push_back(pcl::PointXYZ(0, 0, 5));
+  const auto one = [](float x, float z) {
+    PointCloud c;
+    c.push_back(pcl::PointXYZ(x, 0, z));
+    return c;
+  };
+  OverlapFilter height(1.8, OverlapTest::height), distance(1.8);
+  height.add(first);
+  distance.add(first);
+  EXPECT_EQ(height.add(one(1.0f, 7.0f))->size(), 0u) << "2 mm above, 1 mm aside: lifted, covered";
+  EXPECT_EQ(distance.add(one(1.0f, 7.0f))->size(), 1u) << "Eq. 7: 2.2 mm away in 3D, new";
+  EXPECT_EQ(height.add(one(1.8f, 20.0f))->size(), 0u) << "on the (x, y) threshold, far above";
+  EXPECT_EQ(height.add(one(1.0f, 3.2f))->size(), 0u) << "exactly 1.8 mm below: covered";
+  EXPECT_EQ(height.add(one(0.5f, 3.1f))->size(), 1u) << "1.9 mm below: better evidence, kept";
+  EXPECT_EQ(height.add(one(3.0f, 20.0f))->size(), 1u) << "3 mm aside: a new place";
+  EXPECT_EQ(height.kept().size(), 3u);
+}

@@ -34,7 +34,7 @@ from score_scipy import read_pcd_xyz  # noqa: E402
 BANDS_MM = [0.0, 2.0, 5.0, 10.0, float("inf")]  # 2 mm: about one marker spacing
 
 
-def nearest_xy_distance(np, queries, points, chunk=4096):
+def nearest_xy_distance(np, queries, points, chunk=1024):
     """(x, y) distance of each query to its nearest point; brute force in chunks."""
     out = np.empty(len(queries))
     p = points[:, :2]

@@ -6,7 +6,7 @@ bool OverlapFilter::overlaps(const pcl::PointXYZ& p) {
   if (kept_.empty()) return false;
   // Squared distances come back in float; compare the exact distance in
   // double for points near the threshold.
-  if (test_ == OverlapTest::distance) {
+  if (overlap_ == OverlapTest::distance) {
     if (index_.nearestKSearch(p, 1, found_, squared_) != 1) return false;
     const auto& q = kept_[static_cast<std::size_t>(found_[0])];
     const double dx = double(p.x) - q.x, dy = double(p.y) - q.y, dz = double(p.z) - q.z;
@@ -34,7 +34,7 @@ CloudPtr OverlapFilter::add_all(const PointCloud& touch) {
   auto added = std::make_shared<PointCloud>(touch);
   kept_ += touch;
   if (kept_.empty()) return added;
-  if (test_ == OverlapTest::distance) {
+  if (overlap_ == OverlapTest::distance) {
     index_.setInputCloud(std::make_shared<const PointCloud>(kept_));
   } else {
     auto flat = std::make_shared<PointCloud>(kept_);

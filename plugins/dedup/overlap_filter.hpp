@@ -23,8 +23,8 @@ enum class OverlapTest {
 
 class OverlapFilter {
  public:
-  explicit OverlapFilter(double threshold_mm, OverlapTest test = OverlapTest::distance)
-      : threshold_mm_(threshold_mm), test_(test) {}
+  explicit OverlapFilter(double threshold_mm, OverlapTest overlap = OverlapTest::distance)
+      : threshold_mm_(threshold_mm), overlap_(overlap) {}
 
   // Adds the points of `touch` that do not overlap what is kept; returns them.
   CloudPtr add(const PointCloud& touch);
@@ -37,7 +37,7 @@ class OverlapFilter {
   bool overlaps(const pcl::PointXYZ& p);
 
   double threshold_mm_;
-  OverlapTest test_;
+  OverlapTest overlap_;
   PointCloud kept_;
   // Over kept_ (height: over its (x, y) with z = 0), rebuilt after each touch.
   pcl::KdTreeFLANN<pcl::PointXYZ> index_;

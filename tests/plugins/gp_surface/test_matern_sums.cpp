@@ -4,6 +4,7 @@
 // far away that its exponential underflows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -57,6 +58,32 @@ TEST(GpMaternSums, EqualALongDoubleReferenceForEveryTailLength) {
     }
     EXPECT_EQ(out[2], 0.0) << "a query 10 m away: every exponential underflows";
   }
+  }
+}
+
+// One point of unit weight at distances giving s from 0 to past e^-s's
+// underflow: each path's term, exponential included, within 4 ulp of the
+// long-double one over the whole range, and exactly 0 once e^-s is below the
+// smallest double (the AVX-512 path computes its own exp).
+TEST(GpMaternSums, OneTermIsExactToAFewUlpFromZeroToUnderflow) {
+  const std::vector<SimdPath> paths = fused_paths_here();
+  if (paths.empty()) GTEST_SKIP() << "no fused path in this build or on this CPU";
+  const double c = 1.0;  // s = r
+  const double px = 0.0, py = 0.0, w = 1.0;
+  for (SimdPath path : paths) {
+    long double worst = 0;
+    for (int i = 0; i <= 80000; ++i) {
+      const double s = i * 0.01;  // 0 to 800
+      double out = -1.0;
+      ASSERT_TRUE(matern52_unit_sums(&px, &py, &w, 1, &s, &py, 0, 1, c, &out, path));
+      const long double ls = s, expected = (1 + ls + ls * ls / 3) * std::exp(-ls);
+      if (expected < 1e-300L) {
+        if (expected < 4e-324L / 2) EXPECT_EQ(out, 0.0) << to_string(path) << ", s " << s;
+        continue;
+      }
+      worst = std::max(worst, std::fabs(out - expected) / expected);
+    }
+    EXPECT_LE(worst, 4 * 1.1102230246251565e-16L) << to_string(path);
   }
 }
 

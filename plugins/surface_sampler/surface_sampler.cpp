@@ -8,6 +8,9 @@
 // mean is also held against the points measured beside each lattice point
 // (near_data.hpp): a local swing is warned of, or masked, or fails the run.
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "near_data.hpp"
 
@@ -19,6 +22,9 @@
 namespace touchcloud {
 
 enum class OutsideData { Mask, Error, Keep };
+// The names pipelines write, for both checks (outside_data, near_data).
+const std::vector<std::pair<std::string, OutsideData>> kOutsideDataChoices = {
+    {"mask", OutsideData::Mask}, {"error", OutsideData::Error}, {"keep", OutsideData::Keep}};
 
 class SurfaceSampler final : public Stage {
   WorkspaceParameters workspace_;
@@ -38,8 +44,7 @@ class SurfaceSampler final : public Stage {
         .doc("lattice points along x and y, edges included");
     p.add("outside_data_margin_mm", outside_margin_mm_, 20.0).unit("mm").above(0)
         .doc("a mean further than this below the lowest or above the highest fitted point is extrapolation");
-    p.add("outside_data", outside_, OutsideData::Mask,
-          {{"mask", OutsideData::Mask}, {"error", OutsideData::Error}, {"keep", OutsideData::Keep}})
+    p.add("outside_data", outside_, OutsideData::Mask, kOutsideDataChoices)
         .doc("points whose mean is extrapolation: dropped with a warning (mask), fail the run (error), or kept "
              "with a warning (keep)");
     p.add("max_sd_mm", max_sd_mm_).unit("mm").above(0)
@@ -50,8 +55,7 @@ class SurfaceSampler final : public Stage {
              "neighbours (about one marker spacing)");
     p.add("near_data_margin_mm", near_margin_mm_, 5.0).unit("mm").above(0)
         .doc("a mean further than this above or below every neighbouring fitted point swings off its data");
-    p.add("near_data", near_, OutsideData::Keep,
-          {{"mask", OutsideData::Mask}, {"error", OutsideData::Error}, {"keep", OutsideData::Keep}})
+    p.add("near_data", near_, OutsideData::Keep, kOutsideDataChoices)
         .doc("points whose mean swings off the neighbouring data: kept with a warning (keep), dropped with a "
              "warning (mask), or fail the run (error)");
   }

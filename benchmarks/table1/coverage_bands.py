@@ -8,7 +8,10 @@ point, and scores each band against the CAD mesh with `touchcloud score`
 (Eq. 11, estimate -> CAD, the run's own ground-truth sampling). A band's mean
 times its share of the lattice adds up to the run's chamfer distance, so the
 table says whether the error after T touches is coverage (lattice far from any
-touch) or the estimate near the data (sensing, the GP's fit).
+touch) or the estimate near the data (sensing, the GP's fit). A second table
+per run measures each touch's footprint (the object within 2 mm (x, y) of
+that touch's salient points), their sum and their union: how much of the
+object a touch can cover at all.
 
 Usage (from the repository root, after building):
   benchmarks/table1/coverage_bands.py --out benchmarks/table1/coverage_bands.md   # both objects, both sensors
@@ -55,7 +58,7 @@ def write_pcd_xyz(path, np, xyz):
 def bands_after(args, np, obj, sensor, touches, work):
     out = os.path.join(work, f"t{touches}")
     pipeline = os.path.join(ROOT, "pipelines", PIPELINE[sensor].format(object=obj))
-    cmd = [args.touchcloud, "run", pipeline, "--out", out, "--seed", str(args.seed), "--quiet",
+    cmd = [args.touchcloud, "run", with_touch_writer(pipeline, work), "--out", out, "--seed", str(args.seed), "--quiet",
            "--set", f"explore.max_iterations={touches}"]
     for kv in METHODS[args.method] + args.set:
         cmd += ["--set", kv]
@@ -86,7 +89,56 @@ def bands_after(args, np, obj, sensor, touches, work):
     total = sum(share * mean for _, _, share, mean in rows if mean is not None)
     if abs(total - chamfer) > 1e-6 * max(1.0, chamfer):
         sys.exit(f"{obj}, {sensor}, {touches} touches: the bands add up to {total} mm, the run scored {chamfer} mm")
-    return chamfer, len(points), rows
+    return chamfer, len(points), rows, footprints(np, obj, touches, out)
+
+
+def with_touch_writer(pipeline, work):
+    """A copy of `pipeline` that also writes each touch's salient points (touch_<k>.pcd)."""
+    with open(pipeline) as f:
+        text = f.read()
+    anchor = "        - id: thin\n"
+    if text.count(anchor) != 1:
+        sys.exit(f"{pipeline}: no single '- id: thin' stage in the explore loop to write the salient points beside")
+    writer = ("        - id: write_touch\n          plugin: cloud_writer\n"
+              "          params: {path: 'touch_{iteration}.pcd'}\n          inputs: {cloud: salient.cloud}\n")
+    text = text.replace(anchor, writer + anchor).replace("../sample_clouds/", os.path.join(ROOT, "sample_clouds") + "/")
+    copy = os.path.join(work, os.path.basename(pipeline))
+    with open(copy, "w") as f:
+        f.write(text)
+    return copy
+
+
+def object_rectangle(obj):
+    """The object's (x, y) rectangle from its scene's workspace: section (the objects fill it)."""
+    box = {}
+    with open(os.path.join(ROOT, "sample_clouds", obj, "scene.yaml")) as f:
+        for line in f:
+            for axis in ("x_mm", "y_mm"):
+                if line.strip().startswith(axis + ":"):
+                    lo, hi = line.split("[", 1)[1].split("]", 1)[0].split(",")
+                    box[axis] = (float(lo), float(hi))
+    return box["x_mm"], box["y_mm"]
+
+
+def footprints(np, obj, touches, out):
+    """Mean area one touch observes, their sum and their union, over the object's rectangle."""
+    (x0, x1), (y0, y1) = object_rectangle(obj)
+    step = 0.5
+    gx, gy = np.meshgrid(np.arange(x0 + step / 2, x1, step), np.arange(y0 + step / 2, y1, step))
+    raster = np.c_[gx.ravel(), gy.ravel()]
+    union = np.zeros(len(raster), bool)
+    areas = []
+    for k in range(touches):
+        path = os.path.join(out, f"touch_{k}.pcd")
+        seen = np.zeros(len(raster), bool)
+        if os.path.exists(path):  # a touch with no salient point writes nothing
+            pts = read_pcd_xyz(path, np)
+            if len(pts):
+                seen = nearest_xy_distance(np, raster, pts) <= BANDS_MM[1]
+        areas.append(seen.sum() * step * step)
+        union |= seen
+    area = (x1 - x0) * (y1 - y0)
+    return {"object": area, "mean": float(np.mean(areas)), "summed": sum(areas) / area, "covered": float(union.mean())}
 
 
 def table(args, np, obj, sensor):
@@ -94,15 +146,21 @@ def table(args, np, obj, sensor):
              + (f", {' '.join(args.set)}" if args.set else "") + ":", "",
              "| touches | chamfer (mm) | touch points | nearest touch point (x, y) | share of lattice | "
              "mean distance to CAD (mm) | share of the chamfer |", "|---|---|---|---|---|---|---|"]
+    prints = ["", "Each touch's footprint: the object's area within 2 mm (x, y) of that touch's salient points "
+              "(before dedup), on a 0.5 mm raster of the object's rectangle:", "",
+              "| touches | object (mm^2) | one touch's footprint, mean (mm^2) | object / footprint | "
+              "footprints summed / object | object covered by their union |", "|---|---|---|---|---|---|"]
     with tempfile.TemporaryDirectory(prefix="coverage_bands_") as work:
         for t in args.touches:
-            chamfer, n, rows = bands_after(args, np, obj, sensor, t, work)
+            chamfer, n, rows, fp = bands_after(args, np, obj, sensor, t, work)
+            prints.append(f"| {t} | {fp['object']:.0f} | {fp['mean']:.0f} | {fp['object'] / fp['mean']:.1f} | "
+                          f"{fp['summed']:.2f} | {100 * fp['covered']:.1f} % |")
             for lo, hi, share, mean in rows:
                 band = f"{lo:g}-{hi:g} mm" if hi != float("inf") else f">= {lo:g} mm"
                 part = "-" if mean is None else f"{mean * share / chamfer:.2f}"
                 lines.append(f"| {t} | {chamfer:.3f} | {n} | {band} | {100 * share:.1f} % | "
                              f"{'-' if mean is None else f'{mean:.3f}'} | {part} |")
-    return lines + [""]
+    return lines + prints + [""]
 
 
 def main():

@@ -96,7 +96,8 @@ class GpSurface final : public Stage {
     if (kernel_ == gp_surface::KernelKind::matern52) {
       const gp_surface::SimdPath sums = gp_surface::fastest_simd_path();
       ctx.used("matern_mean_sums",
-               std::string(sums == gp_surface::SimdPath::none ? "kernel columns (Eigen)" : gp_surface::to_string(sums)));
+               sums == gp_surface::SimdPath::none ? std::string("kernel columns (Eigen)")
+                                                  : std::string(gp_surface::to_string(sums)) + " (inline exp)");
     }
   }
   void declare_ports(PortSet& ports) override {

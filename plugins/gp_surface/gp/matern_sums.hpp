@@ -1,7 +1,7 @@
 // The GP mean's inner sum for the Matern 5/2 kernel, fused: distance, square
 // root, exponential and weighted sum in one pass over the training points,
-// eight at a time with AVX-512 (its own inline exp, matern_sums.cpp) or four
-// with AVX2 and FMA (SLEEF's exp); both about 1 ulp. Built where SLEEF is
+// eight at a time with AVX-512 or four with AVX2 and FMA, both with their own
+// inline exp (matern_sums.cpp), about 1 ulp. Built where SLEEF is
 // (gp/simd_path.hpp). The Matern mean on the 200 x 200 lattice
 // costs 40,000 x n such terms per touch (the kernel has no separable form,
 // unlike the RBF's); writing each query's kernel column to memory and reading

@@ -27,8 +27,8 @@ SimdPath fastest_simd_path() {
 
 const char* to_string(SimdPath path) {
   switch (path) {
-    case SimdPath::avx512f: return "avx512f (inline exp)";
-    case SimdPath::avx2_fma: return "avx2+fma (SLEEF)";
+    case SimdPath::avx512f: return "avx512f";
+    case SimdPath::avx2_fma: return "avx2+fma";
     case SimdPath::none: break;
   }
   return "none";

@@ -16,8 +16,7 @@ bool simd_path_runs_here(SimdPath path);
 std::vector<SimdPath> simd_paths_here();
 // The fastest path that runs here.
 SimdPath fastest_simd_path();
-// "avx512f (inline exp)" (the fused Matern sums' own exp), "avx2+fma (SLEEF)"
-// or "none".
+// The instruction set: "avx512f", "avx2+fma" or "none".
 const char* to_string(SimdPath path);
 
 }  // namespace touchcloud::gp_surface

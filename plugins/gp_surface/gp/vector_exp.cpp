@@ -42,7 +42,7 @@ void exp_in_place(Eigen::Ref<Eigen::ArrayXd> v, SimdPath path) {
 }
 
 const char* vector_exp_path() {
-  return simd_path_runs_here(SimdPath::avx2_fma) ? to_string(SimdPath::avx2_fma) : "sse2 (Eigen)";
+  return simd_path_runs_here(SimdPath::avx2_fma) ? "avx2+fma (SLEEF)" : "sse2 (Eigen)";
 }
 
 }  // namespace touchcloud::gp_surface

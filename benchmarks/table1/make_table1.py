@@ -124,6 +124,9 @@ def run_one(args, obj, method, seed, workdir):
         "final_fscore": m["score.final_fscore"]["value"],
         "convergence_touches": m["score.convergence_touches"]["value"],
         "points": m["dedup.total_points"]["value"],
+        # Lattice points of the final surface more than near_data_margin_mm
+        # outside the data near them (surface_sampler's warning).
+        "off_data_points": m["surface.off_data_points"]["value"],
         "wall_time_s": summary["wall_time_s"],
     }
 
@@ -250,11 +253,12 @@ def main():
     with open(os.path.join(args.out, "runs.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["object", "method", "seed", "final_chamfer_mm", "final_p95_mm", "final_hausdorff_mm",
-                    "final_fscore", "convergence_touches", "final_points", "wall_time_s"])
+                    "final_fscore", "convergence_touches", "final_points", "off_data_points", "wall_time_s"])
         for r in runs:
             w.writerow([r["object"], r["method"], r["seed"], f"{r['final_chamfer_mm']:.4f}", f"{r['final_p95_mm']:.4f}",
                         f"{r['final_hausdorff_mm']:.4f}", f"{r['final_fscore']:.4f}",
-                        int(r["convergence_touches"]), int(r["points"]), f"{r['wall_time_s']:.2f}"])
+                        int(r["convergence_touches"]), int(r["points"]), int(r["off_data_points"]),
+                        f"{r['wall_time_s']:.2f}"])
 
     rows, curves = [], []
     for obj in OBJECTS:
@@ -282,6 +286,7 @@ def main():
             explorations = touches - INITIAL_RANDOM
             pts_mean, _ = mean_sd([r["points"] for r in group])
             time_mean, _ = mean_sd([r["wall_time_s"] for r in group])
+            off = [int(r["off_data_points"]) for r in group]
             finals = {k: mean_sd([r[k] for r in group]) for k in ("final_p95_mm", "final_hausdorff_mm", "final_fscore")}
             rows.append({
                 "object": obj, "method": method, "final_cd_mm": cd_mean, "final_cd_sd_mm": cd_sd,
@@ -289,6 +294,7 @@ def main():
                 "final_fscore": finals["final_fscore"], "mean_curve": mean_curve,
                 "convergence_steps": steps if conv < touches else f"{explorations}+",
                 "final_points": pts_mean, "wall_time_s": time_mean, "seeds": len(group),
+                "off_data_points": statistics.fmean(off), "off_data_runs": sum(1 for v in off if v > 0),
             })
         # Touches each row needs to reach Ours' final (touch 34) mean chamfer.
         for r in rows:
@@ -304,7 +310,8 @@ def main():
         w = csv.writer(f)
         header = ["object", "method", "final_mean_cd_mm", "cd_sd_mm", "final_p95_mm", "p95_sd_mm",
                   "final_hausdorff_mm", "hausdorff_sd_mm", "final_fscore", "fscore_sd", "convergence_steps",
-                  "touches_to_ours_final", "final_points", "seeds", "mean_wall_time_s",
+                  "touches_to_ours_final", "final_points", "off_data_points", "off_data_runs", "seeds",
+                  "mean_wall_time_s",
                   "paper_cd_mm", "paper_steps", "paper_points"]
         if ideal:
             header.append("ideal_cd_mm")
@@ -314,7 +321,8 @@ def main():
                    f"{r['final_p95_mm'][0]:.3f}", f"{r['final_p95_mm'][1]:.3f}",
                    f"{r['final_hausdorff_mm'][0]:.3f}", f"{r['final_hausdorff_mm'][1]:.3f}",
                    f"{r['final_fscore'][0]:.3f}", f"{r['final_fscore'][1]:.3f}",
-                   r["convergence_steps"], r["touches_to_ours_final"], f"{r['final_points']:.1f}", r["seeds"],
+                   r["convergence_steps"], r["touches_to_ours_final"], f"{r['final_points']:.1f}",
+                   f"{r['off_data_points']:.1f}", r["off_data_runs"], r["seeds"],
                    f"{r['wall_time_s']:.2f}", *paper(r)]
             if ideal:
                 i = ideal.get((r["object"], r["method"]))
@@ -344,11 +352,14 @@ def main():
                 "convergence steps: explorations (touches after the 4 first ones) until the seed-averaged "
                 "curve stays within 5% of its final value; to Ours' final: the first touch at which the "
                 "seed-averaged curve reaches Ours' final mean chamfer (Ours: touch 34); final points: mean "
-                "training points of the GP. Paper: real robot, 3D-printed objects (its Table 1).\n\n")
+                "training points of the GP; off-data: lattice points of the final surface more than 5 mm "
+                "(near_data_margin_mm) outside the heights of the data within 2 mm of them, which surface_sampler "
+                "warns of, mean over seeds (in how many runs). Paper: real robot, 3D-printed objects (its Table 1).\n\n")
         f.write(f"Made by `{command}` (see benchmarks/table1/README.md); {len(runs)} runs in "
                 f"{elapsed_s / 60:.1f} min.\n\n")
         cols = ["object", "method", "final mean CD (mm)", "p95 (mm)", "Hausdorff (mm)",
                 f"F@{args.fscore_threshold:g}mm", "convergence steps", "touches to Ours' final CD", "final points",
+                "off-data lattice points (runs)",
                 "paper CD (mm)", "paper steps", "paper points"]
         if ideal:
             cols.append("ideal CD (mm)")
@@ -359,7 +370,8 @@ def main():
             p = paper(r)
             cells = [OBJECTS[r["object"]], r["method"], pm((r["final_cd_mm"], r["final_cd_sd_mm"])),
                      pm(r["final_p95_mm"]), pm(r["final_hausdorff_mm"], 2), pm(r["final_fscore"]),
-                     str(r["convergence_steps"]), r["touches_to_ours_final"], f"{r['final_points']:.1f}", *p]
+                     str(r["convergence_steps"]), r["touches_to_ours_final"], f"{r['final_points']:.1f}",
+                     f"{r['off_data_points']:.1f} ({r['off_data_runs']})", *p]
             if ideal:
                 i = ideal.get((r["object"], r["method"]))
                 cells.append(i["final_mean_cd_mm"] if i else "-")

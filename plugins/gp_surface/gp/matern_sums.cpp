@@ -98,7 +98,8 @@ __attribute__((target("avx2,fma"))) inline __m256d pow2_of_whole(__m256d k) {
 
 __attribute__((target("avx2,fma"))) inline __m256d exp_of_minus(__m256d s) {
   s = _mm256_min_pd(_mm256_set1_pd(1400.0), s);  // min(a, b) returns b when either is NaN
-  const __m256d k = _mm256_round_pd(_mm256_mul_pd(s, _mm256_set1_pd(kMinusInvLn2)), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  const __m256d t = _mm256_mul_pd(s, _mm256_set1_pd(kMinusInvLn2));  // -s / ln 2
+  const __m256d k = _mm256_round_pd(t, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
   __m256d r = _mm256_fnmsub_pd(k, _mm256_set1_pd(kLn2High), s);
   r = _mm256_fnmadd_pd(k, _mm256_set1_pd(kLn2Low), r);
   __m256d p = _mm256_set1_pd(kExpPoly[11]);

@@ -11,6 +11,9 @@ std::optional<std::string> output_name_problem(const std::string& file_name) {
   if (escapes) return "output file '" + file_name + "' must stay inside the output folder";
   if (file_name.empty() || normal == "." || normal.filename().empty())
     return "output file '" + file_name + "' names no file";
+  if (normal.begin()->string().rfind(kStagingPrefix, 0) == 0)
+    return "output file '" + file_name + "' is inside a folder named " + kStagingPrefix +
+           "*, which the toolkit reserves for its staging folders";
   return std::nullopt;
 }
 

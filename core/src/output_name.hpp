@@ -7,8 +7,13 @@
 
 namespace touchcloud {
 
+// The names of the staging folders a run writes into inside its output
+// folder (.touchcloud-staging-<pid>): reserved, no output may use them.
+inline constexpr const char* kStagingPrefix = ".touchcloud-staging-";
+
 // Why `file_name` would leave the output folder (absolute, or a first
-// component '..' after normalising), or nullopt. "..hidden.ply" stays.
+// component '..' after normalising) or lie in a staging folder, or nullopt.
+// "..hidden.ply" stays.
 std::optional<std::string> output_name_problem(const std::string& file_name);
 
 // The placeholder the runtime replaces by the pipeline's name in output file

@@ -8,9 +8,13 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "interrupt_cleanup.hpp"
+#include "output_name.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/file_write.hpp"
 
 namespace fs = std::filesystem;
 
@@ -18,16 +22,30 @@ namespace touchcloud {
 
 namespace {
 
-const std::string kStagingPrefix = ".touchcloud-staging-";
+// A file inside each staging folder that says which process made it: a
+// folder of that name without it (a user's own) is never removed.
+const std::string kOwnerFile = ".touchcloud-owner";
+std::string owner_text(pid_t pid) { return "touchcloud staging folder of process " + std::to_string(pid) + "\n"; }
 
 // The pid in a staging folder's name, or 0.
 pid_t staging_pid(const std::string& name) {
-  if (name.rfind(kStagingPrefix, 0) != 0) return 0;
-  const char* first = name.data() + kStagingPrefix.size();
+  const std::string prefix = kStagingPrefix;
+  if (name.rfind(prefix, 0) != 0) return 0;
+  const char* first = name.data() + prefix.size();
   const char* last = name.data() + name.size();
   pid_t pid = 0;
   const auto r = std::from_chars(first, last, pid);
   return r.ec == std::errc() && r.ptr == last && pid > 0 ? pid : 0;
+}
+
+// The folder holds the owner file a run of process `pid` wrote.
+bool made_by_run(const fs::path& folder, pid_t pid) {
+  std::error_code ec;
+  const fs::path owner = folder / kOwnerFile;
+  if (!fs::is_regular_file(fs::symlink_status(owner, ec)) || fs::file_size(owner, ec) > 100) return false;
+  std::ifstream in(owner);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text == owner_text(pid);
 }
 
 }  // namespace
@@ -54,10 +72,21 @@ OutputStaging::OutputStaging(const fs::path& out_dir) : out_(out_dir) {
   }
   remove_stale_staging();
   staging_ = out_ / (kStagingPrefix + std::to_string(::getpid()));
+  // Ours only if a run of this process made it (a pid is reused).
+  if (fs::exists(fs::symlink_status(staging_, ec)) && !made_by_run(staging_, ::getpid()))
+    throw InputError("the output folder " + out_.string() + " holds " + staging_.filename().string() +
+                     ", a name the toolkit reserves for its staging folders; move it or choose another --out");
   fs::remove_all(staging_, ec);
   interrupt::remove_on_interrupt(staging_);
   fs::create_directories(staging_, ec);
   if (ec) throw InputError("cannot write in the output folder " + out_.string() + ": " + ec.message());
+  try {
+    write_file(staging_ / kOwnerFile, owner_text(::getpid()));
+  } catch (const RunError& e) {
+    fs::remove_all(staging_, ec);
+    interrupt::forget(staging_);
+    throw InputError("cannot write in the output folder " + out_.string() + ": " + e.what());
+  }
 }
 
 OutputStaging::~OutputStaging() {
@@ -70,13 +99,13 @@ OutputStaging::~OutputStaging() {
   if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
-// A staging folder whose process is gone (killed, or the machine stopped)
-// is left over; its files were never outputs.
+// A staging folder a run made whose process is gone (killed, or the
+// machine stopped) is left over; its files were never outputs.
 void OutputStaging::remove_stale_staging() const {
   std::error_code ec;
   for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {
     const pid_t pid = staging_pid(it->path().filename().string());
-    if (pid == 0 || pid == ::getpid()) continue;
+    if (pid == 0 || pid == ::getpid() || !made_by_run(it->path(), pid)) continue;
     if (::kill(pid, 0) != 0 && errno == ESRCH) {
       std::error_code ignored;
       fs::remove_all(it->path(), ignored);

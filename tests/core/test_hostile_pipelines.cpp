@@ -78,6 +78,19 @@ TEST_F(HostilePipelines, AWriterPathOutsideTheOutputFolderIsRefusedAtLoadAndDotD
   EXPECT_NO_THROW(load("pipeline: t\nstages:\n" + kRead + writer + "sub/../x.ply}\n"));
 }
 
+
+// A later run into the same folder would remove a file in a staging folder.
+TEST_F(HostilePipelines, AWriterPathInAStagingFolderIsRefusedAtLoad) {
+  const std::string writer = "  - id: w\n    plugin: cloud_writer\n    inputs: {cloud: read.cloud}\n    params: {path: ";
+  for (const std::string path : {".touchcloud-staging-7/kept.ply", "./.touchcloud-staging-x/a/b.ply",
+                                 "sub/../.touchcloud-staging-1/x.ply"}) {
+    const auto d = errors("pipeline: t\nstages:\n" + kRead + writer + path + "}\n");
+    ASSERT_EQ(d.size(), 1u) << path;
+    EXPECT_TRUE(mentions(d[0], "which the toolkit reserves for its staging folders")) << d[0].str();
+    EXPECT_EQ(d[0].where.line, 9);
+  }
+  EXPECT_NO_THROW(load("pipeline: t\nstages:\n" + kRead + writer + "sub/.touchcloud-staging-1/x.ply}\n"));
+}
 TEST_F(HostilePipelines, AFolderOrAFifoAsThePipelineIsBadInputWithoutBlocking) {
   fs::create_directory(dir_ / "folder.yaml");
   EXPECT_NE(load_error(dir_ / "folder.yaml").find("is a folder, not a file"), std::string::npos);

@@ -67,15 +67,38 @@ TEST_F(OutputStaging, StagingFoldersOfDeadRunsAreRemoved) {
   const pid_t child = ::fork();
   if (child == 0) ::_exit(0);
   ::waitpid(child, nullptr, 0);
-  const fs::path stale = out / (".touchcloud-staging-" + std::to_string(child));
+  const auto staging = [&](pid_t pid) { return out / (".touchcloud-staging-" + std::to_string(pid)); };
+  const auto owner = [](pid_t pid) { return "touchcloud staging folder of process " + std::to_string(pid) + "\n"; };
+  const fs::path stale = staging(child);
   fs::create_directories(stale);
+  test::write_file(stale / ".touchcloud-owner", owner(child));
   test::write_file(stale / "partial.ply", "half");
   // One whose process lives (ours is not it: it is this test's parent).
-  const fs::path alive = out / (".touchcloud-staging-" + std::to_string(::getppid()));
+  const fs::path alive = staging(::getppid());
   fs::create_directories(alive);
+  test::write_file(alive / ".touchcloud-owner", owner(::getppid()));
   run(out);
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_TRUE(fs::exists(alive));
+  EXPECT_TRUE(fs::exists(out / "cloud.pcd"));
+}
+
+// A folder of a staging folder's name that no run made (a user's own, or
+// one whose owner file names another process) is never removed.
+TEST_F(OutputStaging, OnlyStagingFoldersARunMadeAreRemoved) {
+  const fs::path out = dir_ / "out";
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  const fs::path mine = out / (".touchcloud-staging-" + std::to_string(child));
+  fs::create_directories(mine);
+  test::write_file(mine / "kept.ply", "a user's file");
+  const fs::path other = out / ".touchcloud-staging-1";
+  fs::create_directories(other);
+  test::write_file(other / ".touchcloud-owner", "touchcloud staging folder of process " + std::to_string(child) + "\n");
+  run(out);
+  EXPECT_EQ(test::read_file(mine / "kept.ply"), "a user's file");
+  EXPECT_TRUE(fs::exists(other / ".touchcloud-owner"));
   EXPECT_TRUE(fs::exists(out / "cloud.pcd"));
 }
 

@@ -4,6 +4,7 @@
 
 #include "touchcloud/blas_environment.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/file_write.hpp"
 #include "touchcloud/interrupt_cleanup.hpp"
 #include "touchcloud/version.hpp"
 #include "mpi_dispatch.hpp"
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
   // First, before any thread starts: Ctrl-C and SIGTERM remove the staging
   // folder of the run in progress.
   touchcloud::clean_up_on_interrupt();
+  // A file-size limit fails a write as a full disk does (exit 1 naming the file).
+  touchcloud::ignore_file_size_signal();
   // OpenBLAS (loaded with the GP plugin) reads its settings when it loads:
   // its idle threads sleep at once (fox mask main job: 4.2-4.3 s against
   // 4.4-5.1 s), and an AVX-512 CPU gets AVX-512 kernels.

@@ -1,6 +1,7 @@
 #include "touchcloud/file_write.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -32,5 +33,7 @@ void write_file(const std::filesystem::path& file, std::string_view bytes) {
   // Some file systems (NFS, quotas) report a full disk only at close.
   if (::close(fd) != 0) fail("write (at close)");
 }
+
+void ignore_file_size_signal() { ::signal(SIGXFSZ, SIG_IGN); }
 
 }  // namespace touchcloud

@@ -90,6 +90,24 @@ TEST(CliFailures, AFullDiskIsExitOneNamingTheFileWithNothingInPlace) {
   EXPECT_TRUE(staging_folders(dir / "out").empty());
 }
 
+// Without the caller ignoring SIGXFSZ, the signal would end the run
+// without a word and leave its partial file in staging.
+TEST(CliFailures, AFileSizeLimitIsExitOneNamingTheFileWithNothingInPlace) {
+  TempDir dir;
+  const std::string cmd = "ulimit -f 4; exec '" + touchcloud::test::cli_path().string() + "' run '" + kDemo +
+                          "' --quiet --out '" + (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
+  const int status = std::system(("bash -c \"" + cmd + "\"").c_str());
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = touchcloud::test::read_file(dir / "err");
+  EXPECT_NE(err.find("touchcloud: error: "), std::string::npos) << err;
+  EXPECT_NE(err.find("gel_dome_thinned.ply"), std::string::npos) << err;
+  EXPECT_NE(err.find("it reached the file-size limit, ulimit -f: 4096 bytes"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "out/gel_dome_thinned.ply"));
+  EXPECT_FALSE(fs::exists(dir / "out/summary.json"));
+  EXPECT_TRUE(staging_folders(dir / "out").empty());
+}
+
 TEST(CliFailures, SigtermAndCtrlCRemoveTheStagingFolder) {
   for (int sig : {SIGTERM, SIGINT}) {
     TempDir dir;

@@ -44,3 +44,12 @@ def test_score_gives_one_row_per_estimate_and_goes_on_past_a_bad_one(tmp_path):
     assert rows[2]["hausdorff_mm"] == pytest.approx(0.5, abs=1e-6)
     with pytest.raises(touchcloud.InputError, match="missing.pcd"):
         touchcloud.score(str(tmp_path / "missing.pcd"), [str(tmp_path / "same.pcd")])
+
+
+def test_a_cloud_that_cannot_be_written_is_an_error_and_leaves_no_file(tmp_path):
+    with pytest.raises(touchcloud.InputError, match=r"x.xyz: unsupported extension '.xyz' \(use .pcd or .ply\)"):
+        touchcloud.write_cloud(str(tmp_path / "x.xyz"), grid(3))
+    with pytest.raises(touchcloud.InputError, match="empty.ply: the cloud has no points"):
+        touchcloud.write_cloud(str(tmp_path / "empty.ply"), np.zeros((0, 3), dtype=np.float32))
+    assert list(tmp_path.iterdir()) == []
+

@@ -12,6 +12,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   libfftw3-dev
   libtorch-dev
+  libjpeg-dev zlib1g-dev
   chromium
 )
 # The report's JavaScript comes through npm: Debian's package, unless an npm

@@ -3,6 +3,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/io/stereo_dataset.hpp"
 
 namespace touchcloud::learning {
@@ -28,8 +29,7 @@ StereoSamples read_stereo_samples(const fs::path& index_file) {
       const std::string& name = row.files[file];
       if (name.empty()) return {};
       const std::string what = s.where + ": " + io::dataset_column(file) + " file '" + name + "'";
-      cv::Mat image = cv::imread((folder / name).string(), type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED);
-      if (image.empty()) throw InputError(what + " is missing or cannot be read as an image");
+      const cv::Mat image = read_image_file(folder / name, type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED, what);
       if (image.type() != type)
         throw InputError(what + " is " + cv::typeToString(image.type()) + "; expected " + cv::typeToString(type));
       if (image.cols != out.camera.width_px || image.rows != out.camera.height_px)

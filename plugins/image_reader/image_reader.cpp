@@ -4,6 +4,7 @@
 // through a recorded sequence.
 #include <opencv2/imgcodecs.hpp>
 
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/camera_image.hpp"
 
@@ -48,12 +49,7 @@ class ImageReader final : public Stage {
     io.output<CameraImagePtr>("image", std::move(image));
   }
 
-  static cv::Mat read(const std::string& file) {
-    cv::Mat image = cv::imread(file, cv::IMREAD_GRAYSCALE);
-    if (image.empty())
-      throw InputError("the image " + file + " cannot be read (missing, unreadable or not an image format OpenCV knows)");
-    return image;
-  }
+  static cv::Mat read(const std::string& file) { return read_image_file(file, cv::IMREAD_GRAYSCALE); }
 };
 
 }  // namespace touchcloud

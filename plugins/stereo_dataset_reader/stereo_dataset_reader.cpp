@@ -5,6 +5,7 @@
 #include <opencv2/core/version.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/io/stereo_dataset.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/path_text.hpp"
@@ -64,9 +65,9 @@ class StereoDatasetReader final : public Stage {
 
   cv::Mat read(const io::StereoDatasetRow& row, io::DatasetFile file, int type) const {
     const std::string& name = row.files[file];
-    cv::Mat image = cv::imread((fs::path(folder_) / name).string(), type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED);
     const std::string what = where(row) + ": " + io::dataset_column(file) + " file '" + name + "'";
-    if (image.empty()) throw InputError(what + " cannot be read (unreadable or not an image OpenCV knows)");
+    const cv::Mat image =
+        read_image_file(fs::path(folder_) / name, type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED, what);
     if (image.type() != type)
       throw InputError(what + " is " + cv::typeToString(image.type()) + "; expected " + cv::typeToString(type));
     if (image.cols != camera_.width_px || image.rows != camera_.height_px)

@@ -3,6 +3,7 @@
 // iteration, so a loop can walk through a recorded sequence.
 #include <opencv2/imgcodecs.hpp>
 
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 
@@ -11,11 +12,7 @@ namespace touchcloud {
 namespace {
 
 cv::Mat read_image(const std::string& file, const char* side, bool colour) {
-  cv::Mat image = cv::imread(file, colour ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
-  if (image.empty())
-    throw InputError(std::string("the ") + side + " image " + file +
-                     " cannot be read (missing, unreadable or not an image format OpenCV knows)");
-  return image;
+  return read_image_file(file, colour ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE, std::string("the ") + side + " image " + file);
 }
 
 std::string size_text(const cv::Mat& image) {

@@ -40,7 +40,16 @@ TEST(StereoSamples, ReadsEveryPairWithMasksAndTruthAndRefusesBadImagesNamingTheF
   tiny::write(dir.path() / "data", 3, 32);
   fs::remove(dir.path() / "data" / "right_2.png");
   const std::string gone = input_error_of([&] { read_stereo_samples(index); });
-  EXPECT_NE(gone.find("right file 'right_2.png' is missing or cannot be read"), std::string::npos) << gone;
+  EXPECT_NE(gone.find("right file 'right_2.png' cannot be read: it does not exist"), std::string::npos) << gone;
+  // A JPEG cut short (OpenCV decoded it, its missing half grey).
+  tiny::write(dir.path() / "data", 3, 32);
+  std::vector<uchar> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(32, 32, CV_8UC3, cv::Scalar(9, 99, 199)), jpeg));
+  write_file(dir.path() / "data" / "left_1.png", std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
+  const std::string cut = input_error_of([&] { read_stereo_samples(index); });
+  EXPECT_NE(cut.find("left file 'left_1.png' cannot be read: not a whole JPEG: libjpeg says \"Premature end of JPEG file\""),
+            std::string::npos)
+      << cut;
   // Not an index.
   const std::string not_index = input_error_of([&] { read_stereo_samples(dir.path() / "data" / "camera.yaml"); });
   EXPECT_NE(not_index.find("not a dataset's index.csv"), std::string::npos) << not_index;

@@ -3,6 +3,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/run_context.hpp"
 
 namespace fs = std::filesystem;
@@ -55,12 +56,6 @@ std::vector<ImagePair> list_image_pairs(const std::string& left_pattern, const s
   return pairs;
 }
 
-cv::Mat read_grey_image(const fs::path& file) {
-  cv::Mat image = cv::imread(file.string(), cv::IMREAD_GRAYSCALE);
-  if (image.empty())
-    throw InputError("image " + absolute_text(file) +
-                     " cannot be read (missing, unreadable or not an image format OpenCV knows)");
-  return image;
-}
+cv::Mat read_grey_image(const fs::path& file) { return read_image_file(file, cv::IMREAD_GRAYSCALE, "image " + absolute_text(file)); }
 
 }  // namespace touchcloud::board_image_corners

@@ -3,13 +3,13 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/io/image_file.hpp"
 
 namespace touchcloud::tactile_dataset {
 
 cv::Mat read_dataset_image(const std::filesystem::path& file, int type, const io::TactileDatasetInfo& info,
                            const std::string& info_file) {
-  cv::Mat image = cv::imread(file.string(), type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED);
-  if (image.empty()) throw InputError("dataset file " + file.string() + " cannot be read");
+  const cv::Mat image = read_image_file(file, type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED, "dataset file " + file.string());
   if (image.type() != type)
     throw InputError("dataset file " + file.string() + " is " + cv::typeToString(image.type()) + "; expected " +
                      cv::typeToString(type));

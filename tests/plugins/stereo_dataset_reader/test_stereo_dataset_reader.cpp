@@ -2,6 +2,8 @@
 // missing or unreadable file or a malformed index.
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "dataset_fixture.hpp"
 #include "touchcloud/io/stereo_dataset.hpp"
 
@@ -76,4 +78,24 @@ TEST(StereoDataset, ReadsAnIndexWithWindowsLineEnds) {
   const auto rows = io::read_dataset_index(dir / "data");
   ASSERT_EQ(rows.size(), lf.size());
   EXPECT_EQ(rows.back().files, lf.back().files);  // no '\r' left on the last column
+}
+
+// OpenCV decodes a JPEG cut short with its missing part grey: refused,
+// naming the index line and the file.
+TEST(StereoDataset, AJpegCutShortIsRefusedNamingTheFile) {
+  TempDir dir;
+  write_dataset(dir.path(), false);
+  std::vector<uchar> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", frame(1)->left, jpeg));
+  write_file(dir / "data" / "pairs" / "000000_left.png", std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
+  StageHarness r("stereo_dataset_reader", {{"index", index_of(dir)}});
+  r.configure();
+  try {
+    r.process({}, {"frame"});
+    FAIL() << "a JPEG cut short";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("index.csv:2: left file 'pairs/000000_left.png' cannot be read: not a whole JPEG"),
+              std::string::npos)
+        << e.what();
+  }
 }

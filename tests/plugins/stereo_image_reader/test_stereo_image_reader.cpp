@@ -118,3 +118,19 @@ TEST_F(StereoImageReader, ColourReadsBgrAndGreyStaysTheDefault) {
   ASSERT_EQ(frame->right.type(), CV_8UC3);
   EXPECT_EQ(frame->right.at<cv::Vec3b>(40, 60), cv::Vec3b(10, 20, 200));
 }
+
+// OpenCV decodes a JPEG cut short with its missing part grey (and libjpeg
+// prints "Premature end of JPEG file"): refused, naming the file.
+TEST_F(StereoImageReader, AJpegCutShortIsRefusedNamingTheFile) {
+  save("left.png", dots_image(3));
+  std::vector<uchar> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", dots_image(3), jpeg));
+  touchcloud::test::write_file(dir_ / "right.jpg", std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
+  testing::internal::CaptureStderr();
+  const auto d = errors(pipeline("left.png", "right.jpg"));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(mentions(d[0], "the right image " + (dir_ / "right.jpg").string() +
+                                 " cannot be read: not a whole JPEG: libjpeg says \"Premature end of JPEG file\""))
+      << d[0].str();
+}

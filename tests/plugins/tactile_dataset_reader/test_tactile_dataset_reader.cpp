@@ -3,6 +3,8 @@
 // mask from the height and dataset.yaml's threshold.
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "tactile_dataset_fixture.hpp"
 
 using namespace touchcloud;
@@ -34,4 +36,20 @@ TEST(TactileDatasetReader, DerivesAMissingMaskFromTheHeightAndTheThreshold) {
   const cv::Mat expected = tactile_sample(1).height->height_mm > 0.05;
   EXPECT_EQ(cv::countNonZero(height->contact_mask != expected), 0);
   EXPECT_GT(cv::countNonZero(expected), 0);
+}
+
+// OpenCV decodes a JPEG cut short with its missing part grey: refused,
+// naming the file.
+TEST(TactileDatasetReader, AJpegCutShortIsRefusedNamingTheFile) {
+  TempDir dir;
+  const auto info = write_tactile_dataset(dir, 2);
+  std::vector<uchar> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(24, 32, CV_8UC3, cv::Scalar(90, 100, 110)), jpeg));
+  const fs::path image = info.parent_path() / "train/images/000000.png";
+  write_file(image, std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
+  StageHarness reader("tactile_dataset_reader", {{"dataset", info.string()}});
+  reader.configure();
+  const std::string message = input_error_of([&] { reader.process({}, {"image"}); });
+  EXPECT_NE(message.find("dataset file " + image.string() + " cannot be read: not a whole JPEG"), std::string::npos)
+      << message;
 }

@@ -1,0 +1,181 @@
+#include "touchcloud/io/image_file.hpp"
+
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <string_view>
+
+#include <jpeglib.h>
+#include <zlib.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "touchcloud/error.hpp"
+#include "touchcloud/path_text.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud {
+
+namespace {
+
+// ---- JPEG: libjpeg's own verdict, its messages kept from the terminal.
+// OpenCV's decoder lets libjpeg print "Premature end of JPEG file" and
+// returns the image with its missing part grey.
+
+struct JpegErrors {
+  jpeg_error_mgr manager;
+  std::jmp_buf jump;
+  char first[JMSG_LENGTH_MAX] = "";  // the first warning, or the error
+};
+
+void jpeg_failed(j_common_ptr info) {
+  auto* errors = reinterpret_cast<JpegErrors*>(info->err);
+  info->err->format_message(info, errors->first);
+  std::longjmp(errors->jump, 1);
+}
+
+void jpeg_message(j_common_ptr info, int level) {
+  if (level >= 0) return;  // trace output, off by default
+  auto* errors = reinterpret_cast<JpegErrors*>(info->err);
+  if (info->err->num_warnings++ == 0) info->err->format_message(info, errors->first);
+}
+
+// Decodes every scan (at 1/8 scale, one row at a time: little memory and
+// time) and says why not when libjpeg fails or warns even once. C objects
+// only between setjmp and longjmp.
+bool jpeg_decodes_cleanly(const std::string& bytes, char (&why)[JMSG_LENGTH_MAX]) {
+  jpeg_decompress_struct info;
+  JpegErrors errors;
+  info.err = jpeg_std_error(&errors.manager);
+  errors.manager.error_exit = jpeg_failed;
+  errors.manager.emit_message = jpeg_message;
+  if (setjmp(errors.jump)) {
+    jpeg_destroy_decompress(&info);
+    std::memcpy(why, errors.first, sizeof why);
+    return false;
+  }
+  jpeg_create_decompress(&info);
+  jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<unsigned long>(bytes.size()));
+  jpeg_read_header(&info, TRUE);
+  info.scale_num = 1;
+  info.scale_denom = 8;
+  info.dct_method = JDCT_IFAST;
+  info.do_fancy_upsampling = FALSE;
+  jpeg_start_decompress(&info);
+  JSAMPARRAY row = (*info.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&info), JPOOL_IMAGE,
+                                             info.output_width * info.output_components, 1);
+  while (info.output_scanline < info.output_height) jpeg_read_scanlines(&info, row, 1);
+  jpeg_finish_decompress(&info);
+  const bool clean = errors.manager.num_warnings == 0;
+  std::memcpy(why, errors.first, sizeof why);
+  jpeg_destroy_decompress(&info);
+  return clean;
+}
+
+std::uint32_t big_endian_u32(std::string_view b, std::size_t at) {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(b[at])) << 24 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 1])) << 16 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 2])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 3]));
+}
+
+std::uint64_t little_endian(std::string_view b, std::size_t at, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+  return v;
+}
+
+// ---- PNG: every chunk whole, its CRC right, up to IEND (libpng would
+// print "libpng error: Read Error" on the terminal first).
+std::string png_problem(std::string_view b) {
+  for (std::size_t at = 8;;) {
+    if (b.size() - at < 12) return "the file ends before its IEND chunk (truncated)";
+    const std::uint64_t length = big_endian_u32(b, at);
+    const std::string type(b.substr(at + 4, 4));
+    if (length > b.size() - at - 12)
+      return "chunk '" + type + "' at byte " + std::to_string(at) + " runs past the end of the file (truncated)";
+    const auto* typed = reinterpret_cast<const Bytef*>(b.data() + at + 4);
+    if (crc32(0, typed, static_cast<uInt>(length + 4)) != big_endian_u32(b, at + 8 + length))
+      return "chunk '" + type + "' at byte " + std::to_string(at) + " fails its checksum (corrupt)";
+    if (type == "IEND") return "";
+    at += 12 + length;
+  }
+}
+
+// ---- BMP: the uncompressed pixel rows the header declares fit in the file
+// (OpenCV prints "can't read data" and returns nothing otherwise).
+std::string bmp_problem(std::string_view b) {
+  if (b.size() < 26) return "the file ends inside its header (truncated)";
+  const std::uint64_t pixels_at = little_endian(b, 10, 4), header = little_endian(b, 14, 4);
+  std::uint64_t width = 0, height = 0, bits = 0, compression = 0;
+  if (header == 12) {  // OS/2 BITMAPCOREHEADER
+    width = little_endian(b, 18, 2), height = little_endian(b, 20, 2), bits = little_endian(b, 24, 2);
+  } else if (header >= 40 && b.size() >= 34) {
+    width = little_endian(b, 18, 4);
+    const auto h = static_cast<std::int32_t>(little_endian(b, 22, 4));  // negative: rows top down
+    height = h < 0 ? 0 - static_cast<std::uint64_t>(static_cast<std::int64_t>(h)) : static_cast<std::uint64_t>(h);
+    bits = little_endian(b, 28, 2), compression = little_endian(b, 30, 4);
+  } else {
+    return "";  // another header: OpenCV decides
+  }
+  if (compression != 0 && compression != 3) return "";  // run-length coded: its size is in the data
+  const std::uint64_t row = (width * bits + 31) / 32 * 4;
+  if (pixels_at > b.size() || (row > 0 && height > (b.size() - pixels_at) / row))
+    return "its header declares " + std::to_string(width) + " x " + std::to_string(height) + " pixels of " +
+           std::to_string(bits) + " bits, more than the file holds (truncated)";
+  return "";
+}
+
+}  // namespace
+
+cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name) {
+  const auto fail = [&](const std::string& why) {
+    throw InputError((name.empty() ? "the image " + file.string() : name) + " cannot be read: " + why);
+  };
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) fail("it does not exist or is not a file (" + absolute_text(file) + ")");
+  std::string bytes;
+  {
+    std::FILE* in = std::fopen(file.c_str(), "rb");
+    const auto size = fs::file_size(file, ec);
+    if (!in || ec) {
+      if (in) std::fclose(in);
+      fail(std::strerror(errno));
+    }
+    bytes.resize(size);
+    const bool whole = std::fread(bytes.data(), 1, bytes.size(), in) == bytes.size();
+    std::fclose(in);
+    if (!whole) fail("a read failed");
+  }
+  if (bytes.empty()) fail("it is empty (0 bytes)");
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) fail("it is larger than OpenCV reads (2 GB)");
+  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U, bytes.data());
+  const std::string_view b = bytes;
+  const auto damaged = [&](const std::string& format, const std::string& why) { fail("not a whole " + format + ": " + why); };
+  if (b.substr(0, 3) == "\xFF\xD8\xFF") {
+    char why[JMSG_LENGTH_MAX];
+    if (!jpeg_decodes_cleanly(bytes, why)) damaged("JPEG", std::string("libjpeg says \"") + why + "\"");
+  } else if (b.substr(0, 8) == "\x89PNG\r\n\x1A\n") {
+    if (const std::string why = png_problem(b); !why.empty()) damaged("PNG", why);
+  } else if (b.substr(0, 2) == "BM") {
+    if (const std::string why = bmp_problem(b); !why.empty()) damaged("BMP", why);
+  } else if ((b.substr(0, 4) == std::string_view("II*\0", 4) || b.substr(0, 4) == std::string_view("MM\0*", 4)) &&
+             flags != cv::IMREAD_UNCHANGED && !(flags & cv::IMREAD_ANYDEPTH)) {
+    // OpenCV cannot turn floating-point samples into 8 bits (it warns on
+    // the terminal and returns nothing): decoded as they are first (libtiff's
+    // messages stay quiet in OpenCV), they say which.
+    const cv::Mat raw = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+    if (raw.empty()) damaged("TIFF", "it does not decode (corrupt or truncated)");
+    if (raw.depth() == CV_32F || raw.depth() == CV_64F)
+      fail("it holds floating-point samples (a depth or height map?); an 8- or 16-bit image is needed here");
+  }
+  cv::Mat image = cv::imdecode(encoded, flags);
+  if (image.empty()) fail("not an image format OpenCV knows, or corrupt");
+  return image;
+}
+
+}  // namespace touchcloud

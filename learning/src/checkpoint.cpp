@@ -1,5 +1,6 @@
 #include "touchcloud/learning/checkpoint.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -23,8 +24,10 @@ bool plain_word(const std::string& s) {
   return true;
 }
 
-// Reads the header from `in`; with `blobs`, also the blobs.
-Checkpoint parse(std::istream& in, const std::string& file, bool blobs) {
+// Reads the header from `in` (a file of `file_size` bytes); with `blobs`,
+// also the blobs, each size checked against what follows before anything
+// is allocated for it.
+Checkpoint parse(std::istream& in, const std::string& file, std::uintmax_t file_size, bool blobs) {
   Checkpoint c;
   std::string line;
   int number = 0;
@@ -58,6 +61,11 @@ Checkpoint parse(std::istream& in, const std::string& file, bool blobs) {
       long long size = -1;
       if (!(words >> name >> size) || size < 0) throw fail("malformed 'blob' line (expected: blob NAME BYTES)");
       if (!blobs) break;
+      const std::streamoff at = in.tellg();
+      const std::uintmax_t left = at < 0 ? 0 : file_size - std::min<std::uintmax_t>(file_size, static_cast<std::uintmax_t>(at));
+      if (static_cast<unsigned long long>(size) > left)
+        throw fail("blob '" + name + "' declares " + std::to_string(size) + " bytes, but only " + std::to_string(left) +
+                   " follow (corrupt or truncated)");
       std::string bytes(static_cast<std::size_t>(size), '\0');
       in.read(bytes.data(), size);
       if (in.gcount() != size)
@@ -128,12 +136,13 @@ std::string checkpoint_bytes(const Checkpoint& c) {
 
 Checkpoint read_checkpoint(const std::filesystem::path& file) {
   auto in = open(file);
-  return parse(in, file.string(), true);
+  std::error_code ec;
+  return parse(in, file.string(), std::filesystem::file_size(file, ec), true);
 }
 
 CheckpointHeader read_checkpoint_header(const std::filesystem::path& file) {
   auto in = open(file);
-  return parse(in, file.string(), false).header;
+  return parse(in, file.string(), 0, false).header;
 }
 
 void require_same_network(const CheckpointHeader& found, const CheckpointHeader& expected, const std::string& file) {

@@ -1,6 +1,8 @@
 #include "touchcloud/learning/torch_io.hpp"
 
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/library_versions.hpp"
@@ -20,7 +22,27 @@ std::string module_bytes(const torch::nn::Module& module) {
   return out.str();
 }
 
+namespace {
+
+std::map<std::string, std::vector<std::int64_t>> tensor_shapes(const torch::nn::Module& module) {
+  std::map<std::string, std::vector<std::int64_t>> shapes;
+  for (const auto& p : module.named_parameters()) shapes[p.key()] = p.value().sizes().vec();
+  for (const auto& b : module.named_buffers()) shapes[b.key()] = b.value().sizes().vec();
+  return shapes;
+}
+
+std::string shape_text(const std::vector<std::int64_t>& shape) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < shape.size(); ++i) text += (i ? ", " : "") + std::to_string(shape[i]);
+  return text + "]";
+}
+
+}  // namespace
+
 void load_module_bytes(torch::nn::Module& module, const std::string& bytes, const std::string& where) {
+  // libtorch's archive replaces each tensor whatever its shape: weights of
+  // another width than the header's (which built `module`) would load.
+  const auto built = tensor_shapes(module);
   try {
     std::istringstream in(bytes);
     torch::serialize::InputArchive archive;
@@ -29,6 +51,12 @@ void load_module_bytes(torch::nn::Module& module, const std::string& bytes, cons
   } catch (const c10::Error& e) {
     const std::string what = e.what_without_backtrace();
     throw InputError(where + ": the weights do not load (" + what.substr(0, what.find('\n')) + ")");
+  }
+  for (const auto& [name, shape] : tensor_shapes(module)) {
+    const auto it = built.find(name);
+    if (it != built.end() && it->second != shape)
+      throw InputError(where + ": the weights do not fit the network its header describes: '" + name + "' is " +
+                       shape_text(shape) + ", the header's network needs " + shape_text(it->second));
   }
 }
 

@@ -206,6 +206,31 @@ TEST(Checkpoint, RefusesMissingCorruptAndOtherNetworksNamingTheFile) {
   EXPECT_NE(arch.find("gs_depthnet"), std::string::npos) << arch;
 }
 
+// A blob larger than the file is bad input before anything is allocated
+// (it was std::bad_alloc), naming the file and the blob.
+TEST(Checkpoint, ABlobLargerThanTheFileIsRefusedBeforeAllocating) {
+  TempDir dir;
+  const std::string header = "touchcloud checkpoint 1\narchitecture gs_depthnet\ninput 64 64 6\n";
+  for (const std::string size : {"9000000000000000000", "1000"}) {
+    write_file(dir.path() / "huge.ckpt", header + "blob weights " + size + "\n" + std::string(10, 'x') + "\n");
+    const std::string e = input_error_of([&] { read_checkpoint(dir.path() / "huge.ckpt"); });
+    EXPECT_NE(e.find("huge.ckpt:4: blob 'weights' declares " + size + " bytes, but only 11 follow (corrupt or truncated)"),
+              std::string::npos)
+        << e;
+  }
+}
+
+// The header's width builds the network; weights of another width would
+// replace its tensors whatever their shape.
+TEST(Checkpoint, WeightsThatDisagreeWithTheHeaderAreRefused) {
+  GsDepthNet wide(tiny_shape(4), tiny_reference());
+  GsDepthNet narrow(tiny_shape(2), tiny_reference());
+  const std::string e = input_error_of([&] { load_module_bytes(*narrow, module_bytes(*wide), "w.ckpt"); });
+  EXPECT_NE(e.find("w.ckpt: the weights do not fit the network its header describes"), std::string::npos) << e;
+  EXPECT_NE(e.find("[4,"), std::string::npos) << e;
+  EXPECT_NE(e.find("[2,"), std::string::npos) << e;
+}
+
 TEST(TrainingLoop, ScheduleHalvesAfterTheConstantEpochsAndBatchesCoverEverySample) {
   LearningRateSchedule s;
   s.initial = 1e-4;

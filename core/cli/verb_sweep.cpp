@@ -21,6 +21,7 @@
 #include "touchcloud/pipeline.hpp"
 #include "seed_option.hpp"
 #include "touchcloud/file_write.hpp"
+#include "touchcloud/output_lock.hpp"
 #include "verbs.hpp"
 
 namespace fs = std::filesystem;
@@ -100,6 +101,10 @@ Action* add_sweep_verb(CLI::App& app) {
       for (auto& s : settings) s.erase(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(fixed.size()));
 
       const fs::path out = o.out;
+      // The whole sweep holds its folder, as a run holds its own: a second
+      // sweep or run into it is refused (exit 2) while this one runs.
+      std::optional<OutputFolderLock> lock;
+      if (launched_rank() == 0) lock.emplace(out);
       const std::size_t repeats = static_cast<std::size_t>(o.repeats), total = settings.size() * repeats;
       // Run `job` is setting job / repeats with seed o.seed + job % repeats: the order of sweep.csv.
       const auto seed_of = [&](std::size_t job) { return o.seed + static_cast<std::uint64_t>(job % repeats); };
@@ -148,7 +153,11 @@ Action* add_sweep_verb(CLI::App& app) {
       };
 
       RankTeam team;
-      if (team.rank() == 0) fs::create_directories(out / "runs");
+      if (team.rank() == 0) {
+        std::error_code ec;
+        fs::create_directories(out / "runs", ec);
+        if (ec) throw InputError("cannot create the output folder " + (out / "runs").string() + ": " + ec.message());
+      }
       // Rank 0 saves what is complete (atomically, at most once a second), so
       // a job stopped half way leaves a sweep.csv that --resume completes.
       const auto table = [&] {

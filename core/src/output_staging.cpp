@@ -1,8 +1,6 @@
 #include "output_staging.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -52,24 +50,8 @@ bool made_by_run(const fs::path& folder, pid_t pid) {
 
 OutputStaging::OutputStaging(const fs::path& out_dir) : out_(out_dir) {
   if (out_.empty()) return;
+  lock_.emplace(out_);
   std::error_code ec;
-  created_out_ = !fs::exists(out_, ec);
-  fs::create_directories(out_, ec);
-  if (ec) throw InputError("cannot create the output folder " + out_.string() + ": " + ec.message());
-  // The lock is on the folder itself, so nothing extra is left in it; the
-  // kernel drops it when the process ends, however it ends.
-  lock_fd_ = ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (lock_fd_ < 0)
-    throw InputError("cannot open the output folder " + out_.string() + ": " + std::strerror(errno));
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    const int err = errno;
-    ::close(lock_fd_);
-    lock_fd_ = -1;
-    if (err == EWOULDBLOCK)
-      throw InputError("the output folder " + out_.string() +
-                       " is in use by another touchcloud run; wait for it to end or choose another --out");
-    throw InputError("cannot lock the output folder " + out_.string() + ": " + std::strerror(err));
-  }
   remove_stale_staging();
   staging_ = out_ / (kStagingPrefix + std::to_string(::getpid()));
   // Ours only if a run of this process made it (a pid is reused).
@@ -95,8 +77,7 @@ OutputStaging::~OutputStaging() {
     fs::remove_all(staging_, ec);
     interrupt::forget(staging_);
   }
-  if (!committed_ && created_out_ && fs::is_empty(out_, ec)) fs::remove(out_, ec);
-  if (lock_fd_ >= 0) ::close(lock_fd_);
+  if (!committed_ && lock_ && lock_->created() && fs::is_empty(out_, ec)) fs::remove(out_, ec);
 }
 
 // A staging folder a run made whose process is gone (killed, or the

@@ -6,8 +6,11 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "touchcloud/output_lock.hpp"
 
 namespace touchcloud {
 
@@ -31,8 +34,8 @@ class OutputStaging {
   void remove_stale_staging() const;
 
   std::filesystem::path out_, staging_;
-  int lock_fd_ = -1;
-  bool created_out_ = false, committed_ = false;
+  std::optional<OutputFolderLock> lock_;
+  bool committed_ = false;
 };
 
 }  // namespace touchcloud

@@ -1,8 +1,13 @@
 // touchcloud sweep: the grid, the records, and bad keys refused up front.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "counting_pipeline.hpp"
 #include "test_support.hpp"
@@ -86,4 +91,54 @@ TEST(SweepVerb, BadKeysAndValuesFailBeforeAnythingRuns) {
   r = run_cli({"sweep", p, "--vary", "c.step", "--out", out}, kTestPlugins);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir / "sw")) << "nothing is written when a setting is bad";
+}
+
+// The sweep holds its folder from its first run to its last: a second sweep
+// into it is refused at once, and the first one's records stay whole.
+TEST(SweepVerb, ASecondSweepIntoAFolderInUseIsRefused) {
+  touchcloud::test::TempDir dir;
+  write_file(dir / "slow.yaml", counting_pipeline("step: 1, check_ms: 1500"));
+  write_file(dir / "p.yaml", counting_pipeline());
+  const fs::path out = dir / "sw";
+  const pid_t first = ::fork();
+  if (first == 0) {
+    ::setenv("TOUCHCLOUD_PLUGIN_PATH", TOUCHCLOUD_TEST_PLUGIN_DIR, 1);
+    const std::string pipeline = (dir / "slow.yaml").string();
+    ::execl(touchcloud::test::cli_path().c_str(), "touchcloud", "sweep", pipeline.c_str(), "--vary", "c.step=1,2,3",
+            "--out", out.c_str(), "--accuracy", "c.value", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // runs/ appears once the first sweep holds the folder, before its first run.
+  for (int i = 0; i < 600 && !fs::exists(out / "runs"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(fs::exists(out / "runs"));
+  const auto second = run_cli({"sweep", (dir / "p.yaml").string(), "--vary", "c.step=5", "--out", out.string(),
+                               "--accuracy", "c.value"},
+                              kTestPlugins);
+  EXPECT_EQ(second.exit_code, 2) << second.err;
+  EXPECT_NE(second.err.find("touchcloud: error: the output folder " + out.string() + " is in use"), std::string::npos)
+      << second.err;
+  int status = 0;
+  ASSERT_EQ(::waitpid(first, &status, 0), first);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const auto rows = read_csv(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  const std::size_t error = column(rows[0], "error");
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    EXPECT_TRUE(rows[i].size() <= error || rows[i][error].empty()) << "run " << i << " failed: " << rows[i][error];
+}
+
+// An output folder that cannot be made is bad input with one clear line, as for `run`.
+TEST(SweepVerb, AnOutputFolderThatCannotBeMadeIsBadInput) {
+  touchcloud::test::TempDir dir;
+  write_file(dir / "p.yaml", counting_pipeline());
+  write_file(dir / "file", "a regular file");
+  const auto r = run_cli({"sweep", (dir / "p.yaml").string(), "--vary", "c.step=1", "--out", (dir / "file/sw").string(),
+                          "--accuracy", "c.value"},
+                         kTestPlugins);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("touchcloud: error: cannot create the output folder " + (dir / "file/sw").string()),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
 }

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/text_lines.hpp"
 
 namespace fs = std::filesystem;
 
@@ -107,11 +108,12 @@ std::string beside(const fs::path& manifest, const std::string& path) {
 void expand_manifest(const fs::path& manifest, const std::string& default_gt, std::vector<ScorePair>& out) {
   std::ifstream in(manifest);
   if (!in) throw InputError("cannot read the manifest " + manifest.string());
+  TextLines lines(in);
   std::string line;
   int line_no = 0;
   bool any = false;
   std::size_t rows = 0;
-  while (std::getline(in, line)) {
+  while (lines.next(line)) {
     ++line_no;
     const auto fields = csv_fields(line);
     if (fields.size() == 1 && (fields[0].empty() || fields[0][0] == '#')) continue;

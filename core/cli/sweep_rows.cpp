@@ -1,5 +1,6 @@
 #include "sweep_rows.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -10,6 +11,7 @@
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/number_text.hpp"
+#include "touchcloud/text_lines.hpp"
 
 namespace fs = std::filesystem;
 
@@ -47,10 +49,14 @@ std::vector<std::string> csv_fields(const std::string& line) {
 // Shortest text that reads back to the same double (std::to_chars).
 std::string number(double v) { return number_text(v); }
 
+// A finite number, as csv_table writes them: a NaN or a word in a row is a
+// corrupt file, never a value to average.
 double read_number(const std::string& text, const SourceLocation& where, const std::string& column) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0') throw InputError(column + ": expected a number, got '" + text + "'", where);
+  double v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v))
+    throw InputError("--resume: " + column + " is '" + text.substr(0, 40) + "', not a finite number (a corrupt row?)",
+                     where);
   return v;
 }
 
@@ -148,9 +154,10 @@ std::vector<RunRow> read_sweep_csv(const fs::path& file, const std::vector<Sweep
                                    const std::vector<std::vector<Override>>& settings) {
   std::ifstream in(file);
   if (!in) throw InputError("--resume: cannot read it", {file.string()});
+  TextLines lines(in);
   std::string line;
   const SourceLocation head{file.string(), 1, 0};
-  if (!std::getline(in, line)) throw InputError("--resume: empty file, not a sweep.csv", {file.string()});
+  if (!lines.next(line)) throw InputError("--resume: empty file, not a sweep.csv", {file.string()});
   const auto header = csv_fields(line);
   // setting, the axes, seed, wall_time_s, time_*_s..., metrics..., rank, host, error
   std::string expected = "setting";
@@ -166,7 +173,7 @@ std::vector<RunRow> read_sweep_csv(const fs::path& file, const std::vector<Sweep
                          ", the stage times and metrics, rank,host,error)", head);
 
   std::vector<RunRow> rows;
-  for (int number_of_line = 2; std::getline(in, line); ++number_of_line) {
+  for (int number_of_line = 2; lines.next(line); ++number_of_line) {
     if (line.empty()) continue;
     const SourceLocation where{file.string(), number_of_line, 0};
     const auto cells = csv_fields(line);
@@ -183,7 +190,10 @@ std::vector<RunRow> read_sweep_csv(const fs::path& file, const std::vector<Sweep
       if (cells[1 + a] != settings[row.setting][a].value)
         throw InputError("--resume: " + axes[a].key + " = " + cells[1 + a] + ", but setting " + cells[0] +
                              " of this sweep has " + settings[row.setting][a].value, where);
-    row.seed = std::strtoull(cells[first_free - 2].c_str(), nullptr, 10);
+    const std::string& seed = cells[first_free - 2];
+    const auto parsed = std::from_chars(seed.data(), seed.data() + seed.size(), row.seed);
+    if (seed.empty() || parsed.ec != std::errc() || parsed.ptr != seed.data() + seed.size())
+      throw InputError("--resume: seed is '" + seed.substr(0, 40) + "', not a whole number (a corrupt row?)", where);
     row.wall_time_s = read_number(cells[first_free - 1], where, "wall_time_s");
     for (std::size_t c = first_free; c + 3 < header.size(); ++c) {
       const std::string& name = header[c];

@@ -142,3 +142,45 @@ TEST(SweepVerb, AnOutputFolderThatCannotBeMadeIsBadInput) {
       << r.err;
   EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
 }
+
+// --resume refuses a sweep.csv whose rows are corrupt (a NaN, a word for a
+// seed), naming the file and line, and reads one saved with CRLF line ends
+// and a byte order mark as it reads its own.
+TEST(SweepVerb, ResumeRefusesCorruptRowsAndReadsWindowsLineEnds) {
+  touchcloud::test::TempDir dir;
+  write_file(dir / "p.yaml", counting_pipeline());
+  const auto sweep = [&](const std::string& out) {
+    return run_cli({"sweep", (dir / "p.yaml").string(), "--vary", "c.step=0.5,2", "--out", (dir / out).string(),
+                    "--accuracy", "c.value", "--resume"},
+                   kTestPlugins);
+  };
+  ASSERT_EQ(sweep("whole").exit_code, 0);
+  const auto rows = read_csv(dir / "whole/sweep.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  const auto line = [&](std::vector<std::string> cells) {
+    cells.resize(rows[0].size());  // read_csv drops an empty last cell (the error)
+    std::string text;
+    for (const auto& c : cells) text += (&c == &cells[0] ? "" : ",") + c;
+    return text;
+  };
+  auto nan_row = rows[2], word_seed = rows[2];
+  nan_row[column(rows[0], "c.value")] = "nan";
+  word_seed[column(rows[0], "seed")] = "x";
+  for (const auto& [name, row] : std::vector<std::pair<std::string, std::vector<std::string>>>{{"nan", nan_row},
+                                                                                                {"seed", word_seed}}) {
+    fs::create_directories(dir / name);
+    write_file(dir / name / "sweep.csv", line(rows[0]) + "\n" + line(rows[1]) + "\n" + line(row) + "\n");
+    const auto r = sweep(name);
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.err;
+    EXPECT_NE(r.err.find((dir / name / "sweep.csv").string() + ":3"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(name == "nan" ? "c.value is 'nan', not a finite number" : "seed is 'x', not a whole number"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / name / "sweep_summary.csv"));
+  }
+  fs::create_directories(dir / "crlf");
+  write_file(dir / "crlf/sweep.csv", "\xEF\xBB\xBF" + line(rows[0]) + "\r\n" + line(rows[1]) + "\r\n");
+  const auto r = sweep("crlf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 of them from before (--resume)"), std::string::npos) << r.out;
+}

@@ -80,6 +80,17 @@ TEST(StereoDataset, ReadsAnIndexWithWindowsLineEnds) {
   EXPECT_EQ(rows.back().files, lf.back().files);  // no '\r' left on the last column
 }
 
+// As a spreadsheet saves UTF-8 CSV: a byte order mark before the header.
+TEST(StereoDataset, ReadsAnIndexWithAByteOrderMark) {
+  TempDir dir;
+  write_dataset(dir.path(), true);
+  const auto plain = io::read_dataset_index(dir / "data");
+  write_file(dir / "data" / "index.csv", "\xEF\xBB\xBF" + read_file(dir / "data" / "index.csv"));
+  const auto rows = io::read_dataset_index(dir / "data");
+  ASSERT_EQ(rows.size(), plain.size());
+  EXPECT_EQ(rows.front().files, plain.front().files);
+}
+
 // OpenCV decodes a JPEG cut short with its missing part grey: refused,
 // naming the index line and the file.
 TEST(StereoDataset, AJpegCutShortIsRefusedNamingTheFile) {

@@ -8,6 +8,7 @@
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/number_text.hpp"
+#include "touchcloud/text_lines.hpp"
 
 namespace fs = std::filesystem;
 
@@ -59,12 +60,10 @@ std::vector<StereoDatasetRow> read_dataset_index(const fs::path& folder) {
     throw InputError(file.string() + ":" + std::to_string(line) + ": " + why, {file.string(), line, 1});
   };
   std::string line;
-  // Lines may end in CRLF, as spreadsheets and Python's csv module write them.
-  auto next_line = [&in, &line] {
-    if (!std::getline(in, line)) return false;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    return true;
-  };
+  // A byte order mark and CRLF line ends, as spreadsheets and Python's csv
+  // module write them.
+  TextLines lines(in);
+  auto next_line = [&lines, &line] { return lines.next(line); };
   if (!next_line() || line != header())
     fail(1, "the first line must name the columns: " + header());
   std::vector<StereoDatasetRow> rows;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <condition_variable>
 #include <cstdlib>
@@ -324,8 +325,9 @@ void score_on_ranks(RankTeam& team, std::vector<Outcome>& outcomes, const std::v
 }
 
 int run_score(const Options& o) {
-  if (o.fscore_threshold_mm <= 0)
-    throw InputError("--fscore-threshold must be > 0 mm, not " + format_fixed(o.fscore_threshold_mm, 3));
+  if (!(o.fscore_threshold_mm > 0) || !std::isfinite(o.fscore_threshold_mm))
+    throw InputError("--fscore-threshold must be a positive, finite number of mm, not " +
+                     number_text(o.fscore_threshold_mm));
   scoring::ScoreOptions options;
   options.metrics = scoring::MetricSelection::parse(o.metrics);
   options.fscore_threshold_mm = o.fscore_threshold_mm;

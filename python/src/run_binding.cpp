@@ -29,7 +29,13 @@ std::string yaml_text(const py::handle& v) {
 
 std::vector<Override> overrides_of(const py::dict& set) {
   std::vector<Override> out;
-  for (const auto& [key, value] : set) out.push_back({key.cast<std::string>(), yaml_text(value), "set="});
+  for (const auto& [key, value] : set) {
+    if (!py::isinstance<py::str>(key))
+      throw py::type_error("set: key " + py::repr(key).cast<std::string>() + " (" +
+                           py::str(key.get_type().attr("__name__")).cast<std::string>() +
+                           ") is not a string; keys are 'stage.param'");
+    out.push_back({key.cast<std::string>(), yaml_text(value), "set="});
+  }
   return out;
 }
 

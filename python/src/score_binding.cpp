@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -23,6 +25,10 @@ NonFinitePoints nonfinite_rule(const std::string& rule) {
 py::list score(const std::string& gt_file, const std::vector<std::string>& estimates, double fscore_threshold_mm,
                std::size_t mesh_samples, std::uint64_t seed, const std::string& nonfinite) {
   const NonFinitePoints rule = nonfinite_rule(nonfinite);
+  // As the CLI's --fscore-threshold, before any file is read.
+  if (!(fscore_threshold_mm > 0) || !std::isfinite(fscore_threshold_mm))
+    throw py::value_error("score: fscore_threshold_mm must be a positive, finite number of mm, not " +
+                          py::repr(py::float_(fscore_threshold_mm)).cast<std::string>());
   scoring::GroundTruthOptions gt_options;
   gt_options.mesh_samples = mesh_samples;
   gt_options.seed = seed;

@@ -228,6 +228,8 @@ TEST_F(ScoreVerb, BadGroundTruthOrUsageStopsWithOneErrorLine) {
       {"score", path("est.pcd")},
       {"score", "--gt", path("gt.pcd"), path("est.pcd"), "--metrics", "chamfer,hausdorff"},
       {"score", "--gt", path("gt.pcd"), path("est.pcd"), "--fscore-threshold", "0"},
+      {"score", "--gt", path("gt.pcd"), path("est.pcd"), "--fscore-threshold", "nan"},
+      {"score", "--gt", path("gt.pcd"), path("est.pcd"), "--fscore-threshold", "inf"},
       {"score", "--gt", path("gt.pcd")},
   };
   for (const auto& args : cases) {

@@ -53,3 +53,9 @@ def test_a_cloud_that_cannot_be_written_is_an_error_and_leaves_no_file(tmp_path)
         touchcloud.write_cloud(str(tmp_path / "empty.ply"), np.zeros((0, 3), dtype=np.float32))
     assert list(tmp_path.iterdir()) == []
 
+
+@pytest.mark.parametrize("threshold", [float("nan"), float("inf"), 0.0, -1.0])
+def test_score_refuses_a_threshold_the_cli_refuses(tmp_path, threshold):
+    touchcloud.write_cloud(str(tmp_path / "gt.pcd"), grid(5))
+    with pytest.raises(ValueError, match="fscore_threshold_mm must be a positive, finite number of mm"):
+        touchcloud.score(str(tmp_path / "gt.pcd"), [str(tmp_path / "gt.pcd")], fscore_threshold_mm=threshold)

@@ -77,6 +77,16 @@ def test_set_overrides_reach_the_stage(source):
         touchcloud.run(pipeline, set={"thin.leaf_size_mm": -1.0})
 
 
+@pytest.mark.parametrize("key", [1, None, ("thin", "leaf_size_mm")])
+def test_a_set_key_that_is_no_string_is_a_type_error_naming_it(source, key):
+    pipeline = str(source / "pipelines/downsample_cloud.yaml")
+    with pytest.raises(TypeError, match=r"set: key .* is not a string; keys are 'stage.param'") as e:
+        touchcloud.run(pipeline, set={key: 2})
+    assert repr(key) in str(e.value)
+    with pytest.raises(TypeError, match="is not a string"):
+        touchcloud.validate(pipeline, set={key: 2})
+
+
 def test_plugins_are_what_the_cli_lists(cli):
     listed = json.loads(subprocess.run([str(cli), "plugins", "--json"], check=True, capture_output=True, text=True).stdout)
     assert touchcloud.plugins() == listed

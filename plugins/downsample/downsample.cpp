@@ -7,6 +7,7 @@
 #include <pcl/filters/random_sample.h>
 #include <pcl/filters/voxel_grid.h>
 
+#include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 
@@ -22,7 +23,7 @@ class Downsample final : public Stage {
   void declare_parameters(ParameterSet& p) override {
     p.add("method", method_, Method::Voxel, {{"voxel", Method::Voxel}, {"random", Method::Random}}).doc("how to thin the cloud");
     p.add("leaf_size_mm", leaf_size_mm_, 1.0).unit("mm").above(0.0).doc("voxel edge length (method voxel)");
-    p.add("keep_ratio", keep_ratio_, 0.25).range(0.0, 1.0).doc("fraction of points kept (method random)");
+    p.add("keep_ratio", keep_ratio_, 0.25).above(0.0).at_most(1.0).doc("fraction of points kept (method random)");
   }
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "points to thin, mm");
@@ -37,8 +38,8 @@ class Downsample final : public Stage {
     const double cells = (std::floor((hi.x - lo.x) / leaf_size_mm_) + 1) * (std::floor((hi.y - lo.y) / leaf_size_mm_) + 1) *
                          (std::floor((hi.z - lo.z) / leaf_size_mm_) + 1);
     if (cells > static_cast<double>(std::numeric_limits<std::int32_t>::max()))
-      throw ParameterError("leaf_size_mm", "a " + std::to_string(leaf_size_mm_) + " mm grid over this cloud's extent needs " +
-                                               std::to_string(cells) + " cells, more than PCL's voxel grid can index; "
+      throw ParameterError("leaf_size_mm", "a " + number_text(leaf_size_mm_) + " mm grid over this cloud's extent needs " +
+                                               number_text(cells) + " cells, more than PCL's voxel grid can index; "
                                                "use a larger leaf");
     pcl::VoxelGrid<pcl::PointXYZ> grid;
     grid.setInputCloud(in);
@@ -51,6 +52,9 @@ class Downsample final : public Stage {
 
   CloudConstPtr random(const CloudConstPtr& in, RunContext& ctx) const {
     const auto keep = static_cast<unsigned>(std::lround(keep_ratio_ * static_cast<double>(in->size())));
+    if (keep == 0)
+      throw ParameterError("keep_ratio", number_text(keep_ratio_) + " of this cloud's " + std::to_string(in->size()) +
+                                             " points keeps none; use a larger ratio");
     pcl::RandomSample<pcl::PointXYZ> sample;
     sample.setInputCloud(in);
     sample.setSample(keep);

@@ -64,3 +64,36 @@ TEST_F(Downsample, RefusesALeafTooSmallForPclToIndex) {
     EXPECT_NE(std::string(e.what()).find("more than PCL's voxel grid can index"), std::string::npos) << e.what();
   }
 }
+
+// The message keeps the leaf's digits: 1e-300 printed "0.000000 mm".
+TEST_F(Downsample, ATinyLeafIsNamedWithItsDigits) {
+  touchcloud::test::save_pcd(dir_ / "in.pcd", touchcloud::test::grid_cloud(3, 1.0));
+  try {
+    thin("{method: voxel, leaf_size_mm: 1e-300}");
+    FAIL() << "a grid of 10^600 cells";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a 1e-300 mm grid over this cloud's extent needs inf cells"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A ratio that keeps nothing is refused naming the ratio, at validation when
+// it is 0, at the stage when the cloud is too small for it (it failed at the
+// writer: "the cloud to write is empty").
+TEST_F(Downsample, ARatioThatKeepsNoPointIsRefusedNamingTheRatio) {
+  touchcloud::test::save_pcd(dir_ / "in.pcd", touchcloud::test::grid_cloud(3, 1.0));
+  const auto d = errors("stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: in.pcd}\n"
+                        "  - id: thin\n    plugin: downsample\n    params: {method: random, keep_ratio: 0}\n"
+                        "    inputs: {cloud: read.cloud}\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(touchcloud::test::mentions(d[0], "parameter 'keep_ratio': value 0 is out of range: must be in (0, 1]"))
+      << d[0].str();
+  EXPECT_EQ(d[0].where.line, 7);
+  try {
+    thin("{method: random, keep_ratio: 0.01}");
+    FAIL() << "1% of 9 points";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("keep_ratio"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("0.01 of this cloud's 9 points keeps none"), std::string::npos) << e.what();
+  }
+}

@@ -9,10 +9,11 @@ packages=(
   libyaml-cpp-dev libceres-dev libflann-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev libopenblas-dev libsleef-dev
   libgtest-dev libbenchmark-dev
   python3-matplotlib python3-numpy python3-dev pybind11-dev python3-pytest
+  python3-open3d pcl-tools
   libopenmpi-dev openmpi-bin
   libfftw3-dev
-  libtorch-dev
   libjpeg-dev zlib1g-dev
+  libtorch-dev
   chromium
 )
 # The report's JavaScript comes through npm: Debian's package, unless an npm

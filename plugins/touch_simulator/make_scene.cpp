@@ -21,6 +21,7 @@
 #include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 #include "touchcloud/types/scene_object.hpp"
+#include "touchcloud/types/workspace.hpp"
 
 namespace fs = std::filesystem;
 using namespace touchcloud;
@@ -36,6 +37,14 @@ std::string num(double v) {
   std::ostringstream s;
   s << (v == 0 ? 0.0 : v);
   return s.str();
+}
+
+// The smallest cell (three significant digits, rounded up) that keeps a
+// side of `side_mm` within kMaxGridCells cells.
+double smallest_cell_mm(double side_mm) {
+  const double cell = side_mm / kMaxGridCells;
+  const double unit = std::pow(10.0, std::floor(std::log10(cell)) - 2);
+  return std::ceil(cell / unit - 1e-9) * unit;
 }
 
 struct Options {
@@ -122,8 +131,17 @@ int make_scene(const Options& o) {
   // + 0.0 turns -0 into 0 in the scene file.
   const Eigen::Vector3d shift(-box.center().x() + 0.0, -box.center().y() + 0.0, -box.min().z() + 0.0);
   const Eigen::AlignedBox3d placed(box.min() + shift, box.max() + shift);
-  const int gx = std::max(1, static_cast<int>(std::ceil(placed.sizes().x() / o.cell_mm)));
-  const int gy = std::max(1, static_cast<int>(std::ceil(placed.sizes().y() / o.cell_mm)));
+  // As a stage's `grid`: at most kMaxGridCells each way (the reach check
+  // visits every cell).
+  const double cells_x = std::max(1.0, std::ceil(placed.sizes().x() / o.cell_mm));
+  const double cells_y = std::max(1.0, std::ceil(placed.sizes().y() / o.cell_mm));
+  if (!(cells_x <= kMaxGridCells && cells_y <= kMaxGridCells))
+    throw InputError("--cell-mm " + num(o.cell_mm) + ": a grid of " + num(cells_x) + " x " + num(cells_y) +
+                     " cells over the " + num(placed.sizes().x()) + " x " + num(placed.sizes().y()) +
+                     " mm footprint; the grid must be in [1, " + std::to_string(kMaxGridCells) +
+                     "] cells each way (--cell-mm " + num(smallest_cell_mm(placed.sizes().head<2>().maxCoeff())) +
+                     " or more)");
+  const int gx = static_cast<int>(cells_x), gy = static_cast<int>(cells_y);
 
   const fs::path folder = o.out / o.name;
   ObjectSpec spec;
@@ -141,7 +159,9 @@ int make_scene(const Options& o) {
   const std::vector<std::string> problems = check_fit(spec, placed, gx, gy);
 
   // Everything is computed before the first file is written.
-  fs::create_directories(folder);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw InputError("cannot create the output folder " + folder.string() + ": " + ec.message());
   const fs::path mesh_copy = folder / o.mesh.filename();
   if (fs::absolute(mesh_copy).lexically_normal() != fs::absolute(o.mesh).lexically_normal())
     fs::copy_file(o.mesh, mesh_copy, fs::copy_options::overwrite_existing);
@@ -157,6 +177,7 @@ int make_scene(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ignore_file_size_signal();  // a file-size limit fails a write as a full disk does
   CLI::App app{"From a mesh to a scene and its ground truth: DIR/NAME/{scene.yaml, mesh, ground_truth.pcd}"};
   Options o;
   app.add_option("mesh", o.mesh, "the object's mesh (.stl, .obj, .ply with faces)")->required();

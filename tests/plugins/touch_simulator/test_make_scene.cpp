@@ -68,3 +68,36 @@ TEST(MakeScene, SaysWhenTheUnitLooksWrongAndRefusesBadInputWritingNothing) {
   EXPECT_EQ(bad_name.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir / "c"));
 }
+
+// A cell far smaller than the object would make a grid of 10^16 cells to
+// check for reach (it ran for hours): refused as a stage's grid is.
+TEST(MakeScene, AGridBeyondAStagesLimitIsRefusedAtOnce) {
+  test::TempDir dir;
+  test::write_file(dir / "ring.obj", test::ring_obj(0.001));
+  for (const std::string cell : {"1e-6", "0.05"}) {
+    const auto r = make_scene({(dir / "ring.obj").string(), "--name", "ring", "--scale", "1000", "--cell-mm", cell,
+                               "--out", (dir / "o").string()});
+    EXPECT_EQ(r.exit_code, 2) << cell << ": " << r.err;
+    EXPECT_NE(r.err.find("touchcloud-make-scene: error: --cell-mm " + cell.substr(0, cell == "1e-6" ? 1 : 4)),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("over the 80 x 80 mm footprint; the grid must be in [1, 1000] cells each way (--cell-mm 0.08"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o"));
+  }
+}
+
+// An output folder that cannot be made is bad input with one clear line.
+TEST(MakeScene, AnOutputFolderUnderAFileIsBadInput) {
+  test::TempDir dir;
+  test::write_file(dir / "ring.obj", test::ring_obj(0.001));
+  test::write_file(dir / "file", "a regular file");
+  const auto r = make_scene({(dir / "ring.obj").string(), "--name", "ring", "--scale", "1000", "--out",
+                             (dir / "file/o").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("touchcloud-make-scene: error: cannot create the output folder " + (dir / "file/o/ring").string()),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
+}

@@ -13,7 +13,7 @@ void WorkspaceParameters::declare(ParameterSet& p, bool with_grid) {
   p.add("workspace_y_mm", y_mm).unit("mm").doc("workspace [min, max] along y, base frame (not set: the scene's)");
   std::vector<std::string> names{"scene", "workspace_x_mm", "workspace_y_mm"};
   if (with_grid) {
-    p.add("grid", grid).range(1, 1000).doc("sampling grid cells along x and y (not set: the scene's)");
+    p.add("grid", grid).range(1, kMaxGridCells).doc("sampling grid cells along x and y (not set: the scene's)");
     names.push_back("grid");
   }
   p.rule(names, [this]() -> std::optional<std::string> {

@@ -8,6 +8,10 @@
 
 namespace touchcloud {
 
+// The most cells a grid has each way (a stage's `grid`, a scene's made by
+// touchcloud-make-scene): every cell is a candidate touch scored each time.
+inline constexpr int kMaxGridCells = 1000;
+
 struct WorkspaceGrid {
   Eigen::Vector2d x_mm{0, 0}, y_mm{0, 0};  // [min, max], base frame
   int cells_x = 1, cells_y = 1;

@@ -87,15 +87,19 @@ TEST_F(OutputStaging, StagingFoldersOfDeadRunsAreRemoved) {
 // one whose owner file names another process) is never removed.
 TEST_F(OutputStaging, OnlyStagingFoldersARunMadeAreRemoved) {
   const fs::path out = dir_ / "out";
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  ::waitpid(child, nullptr, 0);
-  const fs::path mine = out / (".touchcloud-staging-" + std::to_string(child));
+  // Two pids that surely ended.
+  pid_t dead[2];
+  for (pid_t& child : dead) {
+    child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+  }
+  const fs::path mine = out / (".touchcloud-staging-" + std::to_string(dead[0]));
   fs::create_directories(mine);
   test::write_file(mine / "kept.ply", "a user's file");
-  const fs::path other = out / ".touchcloud-staging-1";
+  const fs::path other = out / (".touchcloud-staging-" + std::to_string(dead[1]));
   fs::create_directories(other);
-  test::write_file(other / ".touchcloud-owner", "touchcloud staging folder of process " + std::to_string(child) + "\n");
+  test::write_file(other / ".touchcloud-owner", "touchcloud staging folder of process " + std::to_string(dead[0]) + "\n");
   run(out);
   EXPECT_EQ(test::read_file(mine / "kept.ply"), "a user's file");
   EXPECT_TRUE(fs::exists(other / ".touchcloud-owner"));

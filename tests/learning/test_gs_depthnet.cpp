@@ -227,8 +227,7 @@ TEST(Checkpoint, WeightsThatDisagreeWithTheHeaderAreRefused) {
   GsDepthNet narrow(tiny_shape(2), tiny_reference());
   const std::string e = input_error_of([&] { load_module_bytes(*narrow, module_bytes(*wide), "w.ckpt"); });
   EXPECT_NE(e.find("w.ckpt: the weights do not fit the network its header describes"), std::string::npos) << e;
-  EXPECT_NE(e.find("[4,"), std::string::npos) << e;
-  EXPECT_NE(e.find("[2,"), std::string::npos) << e;
+  EXPECT_NE(e.find("' is [1, 4, 3, 3], the header's network needs [1, 2, 3, 3]"), std::string::npos) << e;
 }
 
 TEST(TrainingLoop, ScheduleHalvesAfterTheConstantEpochsAndBatchesCoverEverySample) {

@@ -47,7 +47,7 @@ TEST(StereoSamples, ReadsEveryPairWithMasksAndTruthAndRefusesBadImagesNamingTheF
   ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(32, 32, CV_8UC3, cv::Scalar(9, 99, 199)), jpeg));
   write_file(dir.path() / "data" / "left_1.png", std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
   const std::string cut = input_error_of([&] { read_stereo_samples(index); });
-  EXPECT_NE(cut.find("left file 'left_1.png' cannot be read: not a whole JPEG: libjpeg says \"Premature end of JPEG file\""),
+  EXPECT_NE(cut.find("left file 'left_1.png' cannot be read: not a whole JPEG: libjpeg says"),
             std::string::npos)
       << cut;
   // Not an index.

@@ -207,7 +207,7 @@ TEST(Checkpoint, RefusesMissingCorruptAndOtherNetworksNamingTheFile) {
 }
 
 // A blob larger than the file is bad input before anything is allocated
-// (it was std::bad_alloc), naming the file and the blob.
+// (not std::bad_alloc), naming the file and the blob.
 TEST(Checkpoint, ABlobLargerThanTheFileIsRefusedBeforeAllocating) {
   TempDir dir;
   const std::string header = "touchcloud checkpoint 1\narchitecture gs_depthnet\ninput 64 64 6\n";

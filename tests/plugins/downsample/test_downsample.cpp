@@ -65,7 +65,7 @@ TEST_F(Downsample, RefusesALeafTooSmallForPclToIndex) {
   }
 }
 
-// The message keeps the leaf's digits: 1e-300 printed "0.000000 mm".
+// The message keeps the leaf's digits (std::to_string gives "0.000000").
 TEST_F(Downsample, ATinyLeafIsNamedWithItsDigits) {
   touchcloud::test::save_pcd(dir_ / "in.pcd", touchcloud::test::grid_cloud(3, 1.0));
   try {
@@ -77,9 +77,9 @@ TEST_F(Downsample, ATinyLeafIsNamedWithItsDigits) {
   }
 }
 
-// A ratio that keeps nothing is refused naming the ratio, at validation when
-// it is 0, at the stage when the cloud is too small for it (it failed at the
-// writer: "the cloud to write is empty").
+// A ratio that keeps nothing is refused naming the ratio (not at the writer,
+// as an empty cloud), at validation when it is 0, at the stage when the
+// cloud is too small for it.
 TEST_F(Downsample, ARatioThatKeepsNoPointIsRefusedNamingTheRatio) {
   touchcloud::test::save_pcd(dir_ / "in.pcd", touchcloud::test::grid_cloud(3, 1.0));
   const auto d = errors("stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: in.pcd}\n"

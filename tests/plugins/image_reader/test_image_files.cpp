@@ -98,9 +98,9 @@ TEST(ImageFiles, FloatImagesAreRefusedNamingTheFile) {
   EXPECT_NE(e.find((dir / real.name).string() + " cannot be read: it holds floating-point samples"), std::string::npos) << e;
 }
 
-// A JPEG cut short decoded with its missing half grey, and libjpeg printed
-// "Premature end of JPEG file"; a cut PNG or BMP printed libpng's or
-// OpenCV's complaint before the error.
+// OpenCV's decoder gives a JPEG cut short with its missing half grey, and
+// libjpeg prints "Premature end of JPEG file"; for a cut PNG or BMP libpng
+// or OpenCV prints a complaint of its own before failing.
 TEST(ImageFiles, FilesCutShortAreRefusedNamingTheFileAndPrintingNothing) {
   test::TempDir dir;
   for (const auto& w : written_images()) {

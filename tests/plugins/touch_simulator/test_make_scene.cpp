@@ -70,7 +70,7 @@ TEST(MakeScene, SaysWhenTheUnitLooksWrongAndRefusesBadInputWritingNothing) {
 }
 
 // A cell far smaller than the object would make a grid of 10^16 cells to
-// check for reach (it ran for hours): refused as a stage's grid is.
+// check for reach (hours): refused as a stage's grid is.
 TEST(MakeScene, AGridBeyondAStagesLimitIsRefusedAtOnce) {
   test::TempDir dir;
   test::write_file(dir / "ring.obj", test::ring_obj(0.001));

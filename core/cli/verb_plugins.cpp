@@ -49,12 +49,15 @@ void print_plugin(const LoadedPlugin& p, bool full) {
   ports("outputs", s.outputs);
   if (!s.metrics.empty()) {
     std::cout << "  metrics:\n";
+    // As parameters are listed: name, unit and traits, then the doc beneath.
     for (const auto& m : s.metrics) {
-      std::string traits = to_string(m.when);
-      if (m.direction != MetricDirection::none) traits += std::string(", ") + to_string(m.direction);
+      std::string traits = m.when == MetricWhen::final ? "final" : "per item";
+      if (m.direction != MetricDirection::none)
+        traits += m.direction == MetricDirection::lower_is_better ? ", lower is better" : ", higher is better";
       if (m.role != MetricRole::none) traits += std::string(", role ") + to_string(m.role);
       std::cout << "    " << std::left << std::setw(22) << m.name << " " << std::setw(15)
-                << (m.unit.empty() ? "-" : m.unit) << " " << m.doc << " (" << traits << ")\n";
+                << (m.unit.empty() ? "-" : m.unit) << " " << traits << "\n"
+                << std::string(28, ' ') << m.doc << "\n";
     }
   }
   if (!s.artifacts.empty()) {
@@ -96,19 +99,17 @@ Action* add_plugins_verb(CLI::App& app) {
         }
       }
       // Grouped by category, in the order of PluginCategory; by name within.
-      for (const PluginCategory category : kPluginCategories) {
-        bool headed = false;
-        for (const LoadedPlugin* p : loaded) {
-          if (p->category() != category) continue;
-          if (o.json) {
-            all.push_back(plugin_json(*p));
-            continue;
-          }
-          if (!headed) std::cout << "== " << category_title(category) << " ==\n\n";
-          headed = true;
-          print_plugin(*p, false);
-          std::cout << "\n";
+      sort_by_category(loaded);
+      for (std::size_t i = 0; i < loaded.size(); ++i) {
+        const LoadedPlugin& p = *loaded[i];
+        if (o.json) {
+          all.push_back(plugin_json(p));
+          continue;
         }
+        if (i == 0 || loaded[i - 1]->category() != p.category())
+          std::cout << "== " << category_title(p.category()) << " ==\n\n";
+        print_plugin(p, false);
+        std::cout << "\n";
       }
       if (o.json) std::cout << all.dump(2) << "\n";
       else {

@@ -42,6 +42,7 @@ class TactileDatasetReader final : public Stage {
     ports.output<MonoColourFramePtr>("image", "the next sample's tactile image (pose unknown: identity)");
     ports.output<HeightMapPtr>("height", "its height map (mm) and contact mask");
     ports.output<MonoColourFramePtr>("reference", "the dataset's no-contact image (reference.png must exist)");
+    ports.metric("samples_read", "samples", "samples read so far");
   }
 
   void on_check(RunContext&) override {

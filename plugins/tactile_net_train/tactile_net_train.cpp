@@ -92,7 +92,21 @@ class TactileNetTrain final : public Stage {
     p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
   }
 
-  void declare_ports(PortSet&) override {}
+  void declare_ports(PortSet& ports) override {
+    ports.metric("parameters", "", "trainable parameters of the network");
+    ports.metric("gflops", "GFLOP", "floating-point operations of one forward pass on an image");
+    ports.metric("training_s", "s", "time the training took");
+    ports.metric("epochs_run", "epochs", "epochs this run trained (after a resumed checkpoint's)");
+    ports.metric("final_loss", "", "training loss of the last epoch").lower_is_better();
+    ports.metric("final_val_loss", "", "validation loss of the last epoch").lower_is_better();
+    ports.metric("final_val_iou", "", "ContactNet: contact IoU on the validation split, last epoch").higher_is_better();
+    ports.metric("final_val_rmse_contact_mm", "mm",
+                 "TactileDepthNet: height RMSE over the true contact on the validation split, last epoch")
+        .lower_is_better();
+    ports.artifact(ArtifactRole::checkpoint, "the trained network: weights, architecture, input size, normalisation");
+    ports.artifact(ArtifactRole::table, "the train/validation loss curve, one row per epoch (CSV)");
+    ports.artifact(ArtifactRole::image, "the loss curve as a picture");
+  }
 
   void on_check(RunContext&) override {
     const fs::path folder = fs::path(dataset_file_).parent_path();
@@ -256,6 +270,10 @@ class TactileNetTrain final : public Stage {
     write_file(ctx.output_path(checkpoint_), lrn::checkpoint_bytes(c));
     write_file(ctx.output_path(curve_csv_), lrn::curve_csv(records));
     write_file(ctx.output_path(curve_png_), lrn::curve_png(records, {"loss", "val_loss"}));
+    ctx.artifact(ArtifactRole::checkpoint, checkpoint_, {{"epochs_done", std::int64_t{epochs_}}});
+    ctx.artifact(ArtifactRole::table, curve_csv_);
+    ctx.artifact(ArtifactRole::image, curve_png_, 
+                 {{"caption", std::string("Training curve: training and validation loss per epoch")}});
     ctx.metric("training_s", seconds, "s");
     ctx.metric("epochs_run", static_cast<double>(records.size()), "epochs");
     if (!records.empty())

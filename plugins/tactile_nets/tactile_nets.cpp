@@ -42,6 +42,8 @@ class TactileNets final : public Stage {
     ports.input<MonoColourFramePtr>("image", "the sensor's colour image now (8-bit BGR, the networks' input size)");
     ports.input<MonoColourFramePtr>("reference", "the same sensor's image without contact");
     ports.output<HeightMapPtr>("height", "height map (mm) with ContactNet's contact mask, pose of the image");
+    ports.metric("max_height_mm", "mm", "greatest height of this map");
+    ports.metric("contact_share", "1", "share of the pixels ContactNet puts in contact");
   }
 
   void on_check(RunContext&) override {

@@ -1,5 +1,5 @@
 // disparity_to_cloud: a dense tactile cloud from the disparity maps of the
-// colour-pattern GelStereo (seed 000, Eq. 7-9), in the sensor frame, and in
+// colour-pattern GelStereo (the GS-DepthNet paper, Eq. 7-9), in the sensor frame, and in
 // the base frame given the pose; with `refraction`, each pixel's two rays
 // traced through the plate as RSRT does (conversion/disparity_conversion.hpp).
 #include <numeric>

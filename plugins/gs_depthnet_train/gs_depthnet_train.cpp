@@ -1,4 +1,4 @@
-// gs_depthnet_train: trains GS-DepthNet (seed 000, Section III-IV) on a
+// gs_depthnet_train: trains GS-DepthNet (the GS-DepthNet paper, Section III-IV) on a
 // dense stereo dataset folder, self-supervised (the images and the contact
 // masks; ground truth disparities, where the folder has them, only give
 // validation metrics per epoch), and writes a checkpoint (weights, the

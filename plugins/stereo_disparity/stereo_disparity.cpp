@@ -1,5 +1,5 @@
 // stereo_disparity: dense left and right disparity maps of a rectified colour
-// pair by OpenCV's StereoBM or StereoSGBM (seed 000's classical baselines,
+// pair by OpenCV's StereoBM or StereoSGBM (the GS-DepthNet paper's classical baselines,
 // Table I's BM and SGBM rows), with a left-right consistency check; invalid
 // pixels are marked, not guessed. The matcher is matcher/disparity_matcher.hpp.
 #include <optional>

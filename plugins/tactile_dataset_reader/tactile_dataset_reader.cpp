@@ -1,5 +1,5 @@
 // tactile_dataset_reader: one tactile image with its height map and contact
-// mask per call from a dataset folder (seed 001's TactileDataset layout:
+// mask per call from a dataset folder (the ContactNet/TactileDepthNet report's TactileDataset layout:
 // touchcloud/io/tactile_dataset.hpp), simulated or recorded; the train or
 // validation split, or both. The layout (paired images and height maps) is
 // checked before the run starts.

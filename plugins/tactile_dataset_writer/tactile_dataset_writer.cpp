@@ -1,6 +1,6 @@
 // tactile_dataset_writer: tactile images of a GelSight-type sensor with their
 // height maps and contact masks into a dataset folder in the output folder
-// (seed 001's TactileDataset layout: touchcloud/io/tactile_dataset.hpp),
+// (the ContactNet/TactileDepthNet report's TactileDataset layout: touchcloud/io/tactile_dataset.hpp),
 // every fifth sample into validation/; the reference image with the first
 // sample, dataset.yaml at the end.
 #include <opencv2/core/version.hpp>

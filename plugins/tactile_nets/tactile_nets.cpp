@@ -1,5 +1,5 @@
 // tactile_nets: the height map (mm) and contact mask of a GelSight-type image
-// by seed 001's trained networks (ContactNet, then TactileDepthNet on the
+// by the trained networks of the ContactNet/TactileDepthNet report (ContactNet, then TactileDepthNet on the
 // image and ContactNet's probability; trained by tactile_net_train), output
 // as photometric_depth's are, so that height_to_cloud and the evaluation
 // take either. Refuses checkpoints of other networks or of different input
@@ -117,4 +117,4 @@ class TactileNets final : public Stage {
 }  // namespace touchcloud
 
 TOUCHCLOUD_PLUGIN(touchcloud::TactileNets, "tactile_nets", learning,
-                  "Height map and contact mask of a GelSight-type image by ContactNet and TactileDepthNet (seed 001)")
+                  "Height map and contact mask of a GelSight-type image by ContactNet and TactileDepthNet")

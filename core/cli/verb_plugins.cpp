@@ -98,18 +98,19 @@ Action* add_plugins_verb(CLI::App& app) {
           std::cerr << "touchcloud: error: " << e.what() << "\n";
         }
       }
-      // Grouped by category, in the order of PluginCategory; by name within.
-      sort_by_category(loaded);
-      for (std::size_t i = 0; i < loaded.size(); ++i) {
-        const LoadedPlugin& p = *loaded[i];
-        if (o.json) {
-          all.push_back(plugin_json(p));
-          continue;
+      // --json: by name, each with its category; the text: grouped by
+      // category, in the order of PluginCategory, by name within.
+      if (o.json)
+        for (const LoadedPlugin* p : loaded) all.push_back(plugin_json(*p));
+      for (const PluginCategory category : kPluginCategories) {
+        bool headed = false;
+        for (const LoadedPlugin* p : loaded) {
+          if (o.json || p->category() != category) continue;
+          if (!headed) std::cout << "== " << category_title(category) << " ==\n\n";
+          headed = true;
+          print_plugin(*p, false);
+          std::cout << "\n";
         }
-        if (i == 0 || loaded[i - 1]->category() != p.category())
-          std::cout << "== " << category_title(p.category()) << " ==\n\n";
-        print_plugin(p, false);
-        std::cout << "\n";
       }
       if (o.json) std::cout << all.dump(2) << "\n";
       else {

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <iterator>
 #include <regex>
 #include <set>
 
@@ -81,14 +80,6 @@ std::string category_title(PluginCategory category) {
   std::string title = to_string(category);
   std::replace(title.begin(), title.end(), '_', ' ');
   return title;
-}
-
-void sort_by_category(std::vector<const LoadedPlugin*>& plugins) {
-  const auto rank = [](PluginCategory c) {
-    return std::find(std::begin(kPluginCategories), std::end(kPluginCategories), c) - std::begin(kPluginCategories);
-  };
-  std::stable_sort(plugins.begin(), plugins.end(),
-                   [&](const LoadedPlugin* a, const LoadedPlugin* b) { return rank(a->category()) < rank(b->category()); });
 }
 
 std::unique_ptr<Stage> LoadedPlugin::create() const {

@@ -155,15 +155,11 @@ void bind_run(py::module_& m) {
       "plugins",
       [](const std::optional<std::string>& name) -> py::object {
         if (name) return json_value(plugin_json(registry().load(*name)));
-        std::vector<const LoadedPlugin*> loaded;
-        for (const auto& n : registry().available()) loaded.push_back(&registry().load(n));
-        sort_by_category(loaded);
         py::list all;
-        for (const LoadedPlugin* p : loaded) all.append(json_value(plugin_json(*p)));
+        for (const auto& n : registry().available()) all.append(json_value(plugin_json(registry().load(n))));
         return all;
       },
-      py::arg("name") = py::none(),
-      "The plugins on the search path as `touchcloud plugins --json` lists them (one dict per plugin, by category).");
+      py::arg("name") = py::none(), "The plugins on the search path as `touchcloud plugins --json` lists them (one dict per plugin).");
 }
 
 }  // namespace touchcloud::python

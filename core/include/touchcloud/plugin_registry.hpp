@@ -53,10 +53,6 @@ class LoadedPlugin {
 // File name of plugin NAME's library: touchcloud_NAME.so
 std::string plugin_file_name(const std::string& name);
 
-// `plugins` in the order lists show them: by category, in PluginCategory's
-// order, keeping the given order (by name) within one.
-void sort_by_category(std::vector<const LoadedPlugin*>& plugins);
-
 class PluginRegistry {
  public:
   static std::vector<std::filesystem::path> default_search_path();

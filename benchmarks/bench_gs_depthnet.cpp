@@ -1,4 +1,4 @@
-// GS-DepthNet inference on one 256 x 256 colour pair on the CPU (seed 000's
+// GS-DepthNet inference on one 256 x 256 colour pair on the CPU (the GS-DepthNet paper's
 // target: <= 40 ms per pair on this toolkit's 2-core machine; the paper:
 // 25 ms on an RTX GPU, 45 ms on a laptop GPU), with libtorch's thread count
 // stated, and OpenCV's SGBM (block 7, 32 disparities from 52 px: the same

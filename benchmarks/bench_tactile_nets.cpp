@@ -1,4 +1,4 @@
-// Seed 001's two networks together (ContactNet, then TactileDepthNet on the
+// ContactNet and TactileDepthNet together (ContactNet, then TactileDepthNet on the
 // image and its probability) on one 240 x 320 GelSight-type image on the
 // CPU, with libtorch's thread count stated (the target: <= 20 ms on
 // 2 cores), and the classical photometric_depth (one core, OpenCV held to

@@ -4,7 +4,7 @@
 // RMSE and largest error (mm) over the true contact region, contact IoU and
 // F1, for photometric_depth with a zero and with a free border, from the
 // shipped calibration (sample_clouds/gelsight_ball/photometric_calibration.yaml).
-// With the learning library, the same presses through seed 001's networks
+// With the learning library, the same presses through ContactNet and TactileDepthNet
 // (ContactNet and TactileDepthNet, the shipped checkpoints under models/,
 // trained on other objects: pipelines/tactile_nets_*.yaml). Time per frame:
 // bench_photometric_depth (one core), bench_tactile_nets (both, 1 and 2 threads).
@@ -281,7 +281,7 @@ static int run(int argc, char** argv) {
         << "|---|---|---|---|---|---|---|---|\n";
   for (const std::string& r : rows) table << r;
   std::ostringstream text;
-  text << "# Classical depth (photometric_depth) and seed 001's networks on held-out presses\n\n"
+  text << "# Classical depth (photometric_depth) and ContactNet/TactileDepthNet on held-out presses\n\n"
        << "Simulated GelSight Mini-like sensor (320 x 240 px, 0.06 mm/px), calibration from nine presses of a 4 mm "
           "ball; each object pressed once, the given depth past first contact at 0.04 mm per frame (truth contact: true "
           "height > 0.05 mm); pixel noise sigma "

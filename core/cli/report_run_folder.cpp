@@ -17,9 +17,7 @@
 #include "report_settings.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/io/cloud_file.hpp"
-#include "touchcloud/run_context.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
-#include "touchcloud/types/workspace.hpp"
 
 namespace touchcloud::cli {
 
@@ -139,13 +137,6 @@ json cloud_json(const scoring::Points& points, const std::string& source, std::v
           {"xyz", floats_base64(xyz)}};
 }
 
-const json* stage_of(const json& summary, const std::string& plugin) {
-  if (!summary.contains("stages") || !summary["stages"].is_array()) return nullptr;
-  for (const json& s : summary["stages"])
-    if (s.is_object() && s.value("plugin", "") == plugin) return &s;
-  return nullptr;
-}
-
 const json* series_of(const json& summary, const std::string& name) {
   const json& m = summary["metrics"];
   if (!m.contains(name) || !m[name].is_object() || !m[name].contains("series") || !m[name]["series"].is_array())
@@ -153,47 +144,64 @@ const json* series_of(const json& summary, const std::string& name) {
   return &m[name]["series"];
 }
 
-// The chamfer curve: the first metric with a series whose last name part
-// starts with "chamfer".
-std::string chamfer_metric(const json& summary) {
-  for (const auto& [name, m] : summary["metrics"].items()) {
-    const auto dot = name.rfind('.');
-    const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
-    if (last.rfind("chamfer", 0) == 0 && m.is_object() && m.contains("series")) return name;
-  }
-  return "";
+// The stage ids in the run's order.
+std::vector<std::string> stage_ids(const json& summary) {
+  std::vector<std::string> ids;
+  if (summary.contains("stages") && summary["stages"].is_array())
+    for (const json& st : summary["stages"])
+      if (st.is_object() && st.contains("id") && st["id"].is_string()) ids.push_back(st["id"].get<std::string>());
+  return ids;
+}
+
+// The metrics of role `role` with a series, as "stage.metric" names, in the
+// order of the run's stages.
+std::vector<std::string> metrics_of_role(const json& summary, const std::string& role) {
+  std::vector<std::string> names;
+  for (const std::string& id : stage_ids(summary))
+    for (const auto& [name, m] : summary["metrics"].items())
+      if (name.rfind(id + ".", 0) == 0 && name.find('.', id.size() + 1) == std::string::npos && m.is_object() &&
+          m.value("role", "") == role && series_of(summary, name))
+        names.push_back(name);
+  return names;
+}
+
+std::string stage_of_metric(const std::string& name) { return name.substr(0, name.rfind('.')); }
+
+// The run's artifact records of `role`, in the order they were recorded.
+std::vector<json> artifacts_of_role(const json& summary, const std::string& role) {
+  std::vector<json> found;
+  if (summary.contains("artifacts") && summary["artifacts"].is_array())
+    for (const json& a : summary["artifacts"])
+      if (a.is_object() && a.value("role", "") == role) found.push_back(a);
+  return found;
+}
+
+std::string file_of(const json& artifact) {
+  return artifact.contains("file") && artifact["file"].is_string() ? artifact["file"].get<std::string>() : "";
 }
 
 std::string param_text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
-// The caption a stage gave the picture `name` it wrote: the note `caption`
-// of the stage with a parameter naming the file (or its pattern, with
-// {iteration} for a number); "" when none did.
-std::string caption_of(const json& summary, const std::string& name) {
-  if (!summary.contains("stages") || !summary["stages"].is_array() || !summary.contains("notes") ||
-      !summary["notes"].is_object())
-    return "";
-  const std::string field = kIterationField;
-  for (const json& st : summary["stages"]) {
-    if (!st.is_object() || !st.contains("params") || !st["params"].is_object()) continue;
-    for (const auto& [key, value] : st["params"].items()) {
-      if (!value.is_string()) continue;
-      const std::string p = value.get<std::string>();
-      bool names = p == name;
-      if (const auto at = p.find(field); !names && at != std::string::npos) {
-        const std::string before = p.substr(0, at), after = p.substr(at + field.size());
-        names = name.size() > before.size() + after.size() && name.rfind(before, 0) == 0 &&
-                name.compare(name.size() - after.size(), after.size(), after) == 0 &&
-                std::all_of(name.begin() + static_cast<std::ptrdiff_t>(before.size()),
-                            name.end() - static_cast<std::ptrdiff_t>(after.size()),
-                            [](unsigned char c) { return std::isdigit(c); });
-      }
-      const std::string note = st.value("id", "") + ".caption";
-      if (names && summary["notes"].contains(note) && summary["notes"][note].is_string())
-        return summary["notes"][note].get<std::string>();
-    }
-  }
-  return "";
+// The ground truth a chamfer-type stage recorded (role ground_truth): the
+// same points it scored against, from the absolute paths, sample count and
+// seed it used.
+scoring::GroundTruth ground_truth_of(const json& record) {
+  const json& a = record.value("attributes", json::object());
+  const auto text = [&](const char* key) -> std::string {
+    if (!a.contains(key) || !a[key].is_string()) throw InputError(std::string("the record has no '") + key + "'");
+    return a[key].get<std::string>();
+  };
+  scoring::GroundTruthOptions options;
+  if (a.contains("samples") && a["samples"].is_number_integer()) options.mesh_samples = a["samples"].get<std::size_t>();
+  if (a.contains("sample_seed") && a["sample_seed"].is_number_integer())
+    options.seed = a["sample_seed"].get<std::uint64_t>();
+  scoring::GroundTruth gt =
+      a.contains("scene") ? scoring::index_ground_truth(scoring::read_scene_ground_truth(text("scene")), options)
+                          : scoring::load_ground_truth(text("ground_truth"), options);
+  if (a.contains("points") && a["points"].is_number_integer() && a["points"].get<std::size_t>() != gt.points.size())
+    throw InputError(std::to_string(gt.points.size()) + " points drawn from " + gt.file.string() + ", but the run scored against " +
+                     std::to_string(a["points"].get<std::size_t>()) + " (has the file changed?)");
+  return gt;
 }
 
 // Mean, sample standard deviation, min and max of `values` (none: nulls).
@@ -256,8 +264,9 @@ json report_data(const std::vector<RunFolder>& runs) {
   std::string unit;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunFolder& r = runs[i];
-    const std::string name = chamfer_metric(r.summary);
-    if (name.empty()) continue;
+    const std::vector<std::string> accuracy = metrics_of_role(r.summary, "accuracy");
+    if (accuracy.empty()) continue;
+    const std::string& name = accuracy.front();
     const json& m = r.summary["metrics"][name];
     if (unit.empty()) unit = m.value("unit", "");
     curves.push_back({{"label", runs.size() > 1 ? names.run[i] : r.summary["pipeline"].value("name", "this run")},
@@ -270,7 +279,7 @@ json report_data(const std::vector<RunFolder>& runs) {
                       {"wall_time_s", r.summary.value("wall_time_s", json())}});
   }
   data["chamfer"] = {{"unit", unit}, {"curves", curves}};
-  if (curves.empty()) missing.push_back("chamfer per touch: no metric named *.chamfer* with a series in summary.json");
+  if (curves.empty()) missing.push_back("accuracy per touch: no metric of role accuracy with a series in summary.json");
   // A folder of runs: one panel per setting (its repeats' curves, final accuracy and time).
   data["settings"] = runs.size() > 1 ? settings_json(curves) : json::array();
 
@@ -299,58 +308,54 @@ json report_data(const std::vector<RunFolder>& runs) {
   data["metrics"] = metrics;
   data["notes"] = s.value("notes", json::object());
 
-  // Clouds: the run's outputs (read with the toolkit's reader).
+  // Clouds: the files the run's stages recorded as clouds, by role (read
+  // with the toolkit's reader); the last of each role is the run's last word.
   json clouds = json::object();
   scoring::Points surface, touches;
   std::string surface_file, touches_file;
   json others = json::array();
-  if (s.contains("outputs") && s["outputs"].is_array())
-    for (const json& o : s["outputs"]) {
-      if (!o.is_string()) continue;
-      const std::string name = o.get<std::string>();
-      const std::string ext = fs::path(name).extension().string();
-      if (ext != ".pcd" && ext != ".ply") continue;
-      scoring::Points pts;
-      try {
-        pts = scoring::to_points(*read_cloud_file(run.dir / name, NonFinitePoints::Drop).cloud);
-      } catch (const InputError& e) {
-        missing.push_back(std::string("cloud ") + name + ": " + e.what());
-        continue;
-      }
-      if (surface_file.empty() && name.find("surface") != std::string::npos) {
-        surface = std::move(pts);
-        surface_file = name;
-      } else if (touches_file.empty() && name.find("touch") != std::string::npos) {
-        touches = std::move(pts);
-        touches_file = name;
-      } else {
-        others.push_back(cloud_json(pts, name));
-      }
-    }
-  if (surface_file.empty()) missing.push_back("reconstructed surface: no cloud output named *surface*.pcd/.ply");
-  if (touches_file.empty()) missing.push_back("touch points: no cloud output named *touch*.pcd/.ply");
-
-  // Ground truth: the chamfer stage's scene object or file.
-  std::optional<scoring::GroundTruth> gt;
-  if (const json* chamfer = stage_of(s, "chamfer"); chamfer && chamfer->contains("params")) {
-    const json& p = (*chamfer)["params"];
+  const auto read_points = [&](const std::string& name, scoring::Points& points) {
     try {
-      scoring::GroundTruthOptions options;
-      if (p.contains("samples") && p["samples"].is_number()) options.mesh_samples = p["samples"].get<std::size_t>();
-      if (p.contains("seed") && p["seed"].is_number()) options.seed = p["seed"].get<std::uint64_t>();
-      if (p.contains("scene") && p["scene"].is_string())
-        gt.emplace(scoring::index_ground_truth(scoring::read_scene_ground_truth(p["scene"].get<std::string>()), options));
-      else if (p.contains("ground_truth") && p["ground_truth"].is_string())
-        gt.emplace(scoring::load_ground_truth(p["ground_truth"].get<std::string>(), options));
+      points = scoring::to_points(*read_cloud_file(run.dir / name, NonFinitePoints::Drop).cloud);
+      return true;
     } catch (const InputError& e) {
-      missing.push_back(std::string("ground truth (paths are relative to where the run started): ") + e.what());
+      missing.push_back(std::string("cloud ") + name + ": " + e.what());
+      return false;
     }
+  };
+  const auto last_file = [&](const char* role) {
+    const std::vector<json> records = artifacts_of_role(s, role);
+    return records.empty() ? std::string() : file_of(records.back());
+  };
+  if (const std::string name = last_file("reconstructed_surface"); name.empty())
+    missing.push_back("reconstructed surface: no file of role reconstructed_surface (cloud_writer's role parameter)");
+  else if (read_points(name, surface))
+    surface_file = name;
+  if (const std::string name = last_file("touch_points"); name.empty())
+    missing.push_back("touch points: no file of role touch_points (cloud_writer's role parameter)");
+  else if (read_points(name, touches))
+    touches_file = name;
+  for (const json& a : artifacts_of_role(s, "cloud"))
+    if (scoring::Points pts; !file_of(a).empty() && read_points(file_of(a), pts)) others.push_back(cloud_json(pts, file_of(a)));
+
+  // Ground truth: what the scored stage recorded; of the stage whose accuracy
+  // the curve draws, where several stages score.
+  std::optional<scoring::GroundTruth> gt;
+  const std::vector<json> truths = artifacts_of_role(s, "ground_truth");
+  const std::vector<std::string> accuracy = metrics_of_role(s, "accuracy");
+  const json* truth = truths.empty() ? nullptr : &truths.front();
+  for (const json& t : truths)
+    if (!accuracy.empty() && t.value("stage", "") == stage_of_metric(accuracy.front())) truth = &t;
+  if (truth) {
+    try {
+      gt.emplace(ground_truth_of(*truth));
+    } catch (const InputError& e) {
+      missing.push_back("ground truth of stage '" + truth->value("stage", "") + "': " + e.what());
+    }
+  } else {
+    missing.push_back("ground truth: no record of role ground_truth (a chamfer stage records one)");
   }
-  if (gt) {
-    clouds["ground_truth"] = cloud_json(gt->points.points(), gt->file.generic_string());
-  } else if (!stage_of(s, "chamfer")) {
-    missing.push_back("ground truth: the run has no chamfer stage naming it");
-  }
+  if (gt) clouds["ground_truth"] = cloud_json(gt->points.points(), gt->file.generic_string());
   if (!surface_file.empty()) {
     std::vector<std::size_t> kept;
     json c = cloud_json(surface, surface_file, &kept);
@@ -372,69 +377,63 @@ json report_data(const std::vector<RunFolder>& runs) {
   if (!touches_file.empty()) {
     json c = cloud_json(touches, touches_file);
     // Touch of each point: the points come in the order touches added them.
-    for (const auto& [name, m] : s["metrics"].items()) {
-      if (name.size() < 13 || name.substr(name.size() - 13) != ".added_points") continue;
+    for (const std::string& name : metrics_of_role(s, "points_added")) {
       const json* series = series_of(s, name);
-      if (!series) continue;
       double total = 0;
       for (const json& v : *series) total += v.is_number() ? v.get<double>() : 0;
       if (static_cast<std::size_t>(total) == touches.size()) {
         c["touch_counts"] = *series;
         c["touch_counts_metric"] = name;
+        break;
       }
-      break;
     }
     if (!c.contains("touch_counts"))
-      missing.push_back("touch of each touch point: no *.added_points series summing to the cloud's size");
+      missing.push_back("touch of each touch point: no series of role points_added summing to the cloud's size");
     clouds["touch_points"] = c;
   }
   if (!others.empty()) clouds["other"] = others;
 
-  // Images among the outputs (a sensing pipeline's views, disparity or
-  // height maps written as pictures), shown as they are.
+  // Pictures the stages recorded (role image: a sensing pipeline's views,
+  // disparity or height maps, a training curve), shown as they are, with
+  // the caption each stage gave.
   json images = json::array();
-  if (s.contains("outputs") && s["outputs"].is_array())
-    for (const json& o : s["outputs"]) {
-      if (!o.is_string()) continue;
-      const std::string name = o.get<std::string>();
-      std::string ext = fs::path(name).extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-      const char* mime = ext == ".png" ? "image/png" : (ext == ".jpg" || ext == ".jpeg") ? "image/jpeg" : nullptr;
-      if (!mime) continue;
-      std::error_code ec;
-      const auto bytes = fs::file_size(run.dir / name, ec);
-      if (ec || bytes > kMaxReportImageBytes || images.size() >= kMaxReportImages) {
-        missing.push_back("image " + name + (ec ? ": not found" : ": more than the page holds (at most " +
-                                                                     std::to_string(kMaxReportImages) + " of 3 MB)"));
-        continue;
-      }
-      std::ifstream in(run.dir / name, std::ios::binary);
-      const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      images.push_back({{"name", name}, {"mime", mime}, {"caption", caption_of(s, name)},
-                        {"base64", base64(content.data(), content.size())}});
+  for (const json& a : artifacts_of_role(s, "image")) {
+    const std::string name = file_of(a);
+    std::string ext = fs::path(name).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const char* mime = ext == ".png" ? "image/png" : (ext == ".jpg" || ext == ".jpeg") ? "image/jpeg" : nullptr;
+    if (!mime) {
+      missing.push_back("image " + name + ": neither PNG nor JPEG");
+      continue;
     }
+    std::error_code ec;
+    const auto bytes = fs::file_size(run.dir / name, ec);
+    if (ec || bytes > kMaxReportImageBytes || images.size() >= kMaxReportImages) {
+      missing.push_back("image " + name + (ec ? ": not found" : ": more than the page holds (at most " +
+                                                                   std::to_string(kMaxReportImages) + " of 3 MB)"));
+      continue;
+    }
+    std::ifstream in(run.dir / name, std::ios::binary);
+    const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const json& attributes = a.value("attributes", json::object());
+    images.push_back({{"name", name}, {"mime", mime}, {"caption", attributes.value("caption", "")},
+                      {"base64", base64(content.data(), content.size())}});
+  }
   data["images"] = images;
 
-  // Touch targets: the planner's grid cells.
-  if (const json* plan = stage_of(s, "next_touch"); plan && plan->contains("params")) {
-    const json& p = (*plan)["params"];
-    const json* cells = series_of(s, plan->value("id", "") + ".cell");
-    if (cells && p.contains("grid") && p.contains("workspace_x_mm") && p.contains("workspace_y_mm")) {
-      WorkspaceGrid grid;
-      grid.cells_x = p["grid"][0].get<int>();
-      grid.cells_y = p["grid"][1].get<int>();
-      grid.x_mm = {p["workspace_x_mm"][0].get<double>(), p["workspace_x_mm"][1].get<double>()};
-      grid.y_mm = {p["workspace_y_mm"][0].get<double>(), p["workspace_y_mm"][1].get<double>()};
+  // Touch targets: the planner's series of roles touch_x_mm and touch_y_mm.
+  const std::vector<std::string> xs = metrics_of_role(s, "touch_x_mm"), ys = metrics_of_role(s, "touch_y_mm");
+  for (const std::string& x : xs)
+    for (const std::string& y : ys) {
+      if (clouds.contains("touch_targets_xy_mm") || stage_of_metric(x) != stage_of_metric(y)) continue;
+      const json &sx = *series_of(s, x), &sy = *series_of(s, y);
+      if (sx.size() != sy.size()) continue;
       json targets = json::array();
-      for (const json& c : *cells) {
-        const Eigen::Vector2d xy = grid.cell_centre_mm(static_cast<int>(c.get<double>()));
-        targets.push_back({xy.x(), xy.y()});
-      }
+      for (std::size_t i = 0; i < sx.size(); ++i) targets.push_back({sx[i], sy[i]});
       clouds["touch_targets_xy_mm"] = targets;
     }
-  }
   if (!clouds.contains("touch_targets_xy_mm"))
-    missing.push_back("sensor touch positions: no next_touch stage with a cell series");
+    missing.push_back("sensor touch positions: no series of roles touch_x_mm and touch_y_mm from one stage");
   data["clouds"] = clouds;
   data["missing"] = missing;
   return data;

@@ -49,12 +49,15 @@ void print_plugin(const LoadedPlugin& p, bool full) {
   ports("outputs", s.outputs);
   if (!s.metrics.empty()) {
     std::cout << "  metrics:\n";
+    // As parameters are listed: name, unit and traits, then the doc beneath.
     for (const auto& m : s.metrics) {
-      std::string traits = to_string(m.when);
-      if (m.direction != MetricDirection::none) traits += std::string(", ") + to_string(m.direction);
+      std::string traits = m.when == MetricWhen::final ? "final" : "per item";
+      if (m.direction != MetricDirection::none)
+        traits += m.direction == MetricDirection::lower_is_better ? ", lower is better" : ", higher is better";
       if (m.role != MetricRole::none) traits += std::string(", role ") + to_string(m.role);
       std::cout << "    " << std::left << std::setw(22) << m.name << " " << std::setw(15)
-                << (m.unit.empty() ? "-" : m.unit) << " " << m.doc << " (" << traits << ")\n";
+                << (m.unit.empty() ? "-" : m.unit) << " " << traits << "\n"
+                << std::string(28, ' ') << m.doc << "\n";
     }
   }
   if (!s.artifacts.empty()) {

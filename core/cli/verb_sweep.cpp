@@ -81,7 +81,8 @@ Action* add_sweep_verb(CLI::App& app) {
   cmd->add_flag("--resume", o.resume,
                 "keep the successful runs an earlier, stopped sweep left in DIR/sweep.csv and run only the others");
   cmd->add_option("--accuracy", o.accuracy,
-                  "metric plotted as accuracy, lower is better (default: the first metric whose name has 'chamfer')");
+                  "STAGE.METRIC plotted as accuracy, better as its declaration says (default: the pipeline's first "
+                  "metric of role accuracy)");
   cmd->add_flag("--report", o.report, "also write report.html (touchcloud report of the sweep's folder) into --out");
   cmd->add_option("--time", o.time, "column plotted as time (wall_time_s or time_STAGE_s)")->capture_default_str();
   cmd->callback([] {
@@ -93,10 +94,24 @@ Action* add_sweep_verb(CLI::App& app) {
       auto settings = sweep_settings(axes);
       for (auto& s : settings) s.insert(s.begin(), fixed.begin(), fixed.end());
 
-      // Every setting must load before anything runs.
+      // Every setting must load before anything runs. The accuracy plotted,
+      // unless named: the first metric a stage declares with role accuracy.
+      std::string accuracy = o.accuracy;
+      std::optional<MetricSpec> accuracy_spec;
       {
         PluginRegistry registry;
-        for (const auto& s : settings) Pipeline::load(o.pipeline, s, registry);
+        for (const auto& s : settings) {
+          const Pipeline p = Pipeline::load(o.pipeline, s, registry);
+          std::string declared;
+          for (const auto& [name, spec] : p.declared_metrics()) {
+            if (!accuracy_spec && (o.accuracy.empty() ? spec.role == MetricRole::accuracy : name == o.accuracy))
+              accuracy = name, accuracy_spec = spec;
+            declared += (declared.empty() ? "" : ", ") + name;
+          }
+          if (!o.accuracy.empty() && !accuracy_spec)
+            throw InputError("--accuracy " + o.accuracy + ": no stage of the pipeline declares such a metric (" +
+                             declared + ")");
+        }
       }
       for (auto& s : settings) s.erase(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(fixed.size()));
 
@@ -225,22 +240,17 @@ Action* add_sweep_verb(CLI::App& app) {
       };
       if (!first_ok) return status();
       if (o.report) std::cout << "wrote " << write_report(out).string() << "\n";
-      std::string accuracy = o.accuracy;
-      if (accuracy.empty())
-        for (const auto& [name, v] : first_ok->metrics)
-          if (name.find("chamfer") != std::string::npos) {
-            accuracy = name;
-            break;
-          }
-      if (accuracy.empty()) {
-        std::cout << "no plot: no metric has 'chamfer' in its name; choose one with --accuracy\n";
+      if (!accuracy_spec) {
+        std::cout << "no plot: no stage declares a metric of role accuracy; choose one with --accuracy\n";
         return status();
       }
       if (!first_ok->metrics.count(accuracy))
-        throw InputError("--accuracy " + accuracy + ": the pipeline reports no such metric");
+        throw InputError("--accuracy " + accuracy + ": declared, but the runs reported no value of it");
       const fs::path script = plot_script();
       const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + (out / "sweep_summary.csv").string() +
-                              "' --x '" + o.time + "' --y '" + accuracy + "' --out '" + (out / "accuracy_vs_time").string() + "'";
+                              "' --x '" + o.time + "' --y '" + accuracy + "' --y-unit '" + accuracy_spec->unit +
+                              "' --y-direction " + to_string(accuracy_spec->direction) + " --out '" +
+                              (out / "accuracy_vs_time").string() + "'";
       if (!fs::exists(script) || std::system(cmd.c_str()) != 0)
         std::cout << "no plot: " << script.string() << " with /usr/bin/python3 and python3-matplotlib is needed "
                   << "(apt-get install python3-matplotlib); the CSV files are complete\n";

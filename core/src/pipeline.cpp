@@ -42,6 +42,13 @@ std::map<std::string, std::map<std::string, ParamValue>> Pipeline::parameters() 
   return out;
 }
 
+std::vector<std::pair<std::string, MetricSpec>> Pipeline::declared_metrics() const {
+  std::vector<std::pair<std::string, MetricSpec>> out;
+  for (const auto* s : impl_->stages)
+    for (const auto& m : s->ports->metrics()) out.emplace_back(s->id + "." + m.name, m);
+  return out;
+}
+
 std::vector<std::string> Pipeline::wired_outputs() const {
   std::vector<std::string> out;
   for (const auto* s : impl_->stages)

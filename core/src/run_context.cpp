@@ -41,36 +41,32 @@ RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& 
 void RunContext::metric(const std::string& name, double value, const std::string& unit) {
   if (!std::isfinite(value))
     throw RunError("metric '" + name + "' is not finite (" + number_text(value) + ")");
-  MetricSpec spec{name, unit, ""};
-  if (declared_) {
-    const MetricSpec* declared = declared_->find_metric(name);
-    // Until every plugin declares its metrics, a stage that declares none
-    // reports as before.
-    if (!declared && !declared_->metrics().empty())
-      throw RunError("the stage reported metric '" + name + "', which it never declared (PortSet::metric)");
-    if (declared && !unit.empty() && unit != declared->unit)
-      throw RunError("the stage reported metric '" + name + "' in '" + unit + "', but declared it in '" +
-                     declared->unit + "'");
-    if (declared) spec = *declared;
-  }
+  const MetricSpec* declared = declared_ ? declared_->find_metric(name) : nullptr;
+  if (!declared) throw RunError("the stage reported metric '" + name + "', which it never declared (PortSet::metric)");
+  if (!unit.empty() && unit != declared->unit)
+    throw RunError("the stage reported metric '" + name + "' in '" + unit + "', but declared it in '" +
+                   declared->unit + "'");
+  if (declared->when == MetricWhen::final && hook_ == StageHook::process)
+    throw RunError("the stage reported final metric '" + name +
+                   "' from process(); a final metric comes once a run, from configure() or finish()");
   std::lock_guard<std::mutex> lock(record_mutex);
   auto& series = record_.metrics[stage_id_ + "." + name];
-  series.spec = std::move(spec);
+  if (declared->when == MetricWhen::final && !series.values.empty())
+    throw RunError("the stage reported final metric '" + name + "' twice; a final metric comes once a run");
+  series.spec = *declared;
   series.values.push_back(value);
 }
 
 void RunContext::artifact(ArtifactRole role, const std::string& file, std::map<std::string, ParamValue> attributes) {
-  if (declared_ && !declared_->find_artifact(role))
+  if (!declared_ || !declared_->find_artifact(role))
     throw RunError(std::string("the stage recorded an artifact of role '") + to_string(role) +
                    "', which it never declared (PortSet::artifact)");
-  std::string name;
-  if (!file.empty()) {
-    name = std::filesystem::path(file).lexically_normal().string();
-    std::lock_guard<std::mutex> lock(record_mutex);
-    bool known = false;
-    for (const auto& o : record_.outputs) known = known || o == name;
-    if (!known)
+  const std::string name = file.empty() ? "" : std::filesystem::path(file).lexically_normal().string();
+  if (!name.empty()) {
+    const auto it = written_.find(name);
+    if (it == written_.end())
       throw RunError("the stage recorded '" + file + "' as an artifact, but wrote no such file (RunContext::output_path)");
+    it->second = true;
   }
   std::lock_guard<std::mutex> lock(record_mutex);
   for (auto& a : record_.artifacts)
@@ -79,6 +75,13 @@ void RunContext::artifact(ArtifactRole role, const std::string& file, std::map<s
       return;
     }
   record_.artifacts.push_back({stage_id_, role, name, std::move(attributes)});
+}
+
+std::vector<std::string> RunContext::files_without_role() const {
+  std::vector<std::string> files;
+  for (const auto& [file, recorded] : written_)
+    if (!recorded) files.push_back(file);
+  return files;
 }
 
 void RunContext::note(const std::string& name, const std::string& text) {
@@ -104,6 +107,7 @@ std::filesystem::path RunContext::output_path(const std::string& file_name) {
   bool known = false;
   for (const auto& o : record_.outputs) known = known || o == name;
   if (!known) record_.outputs.push_back(name);
+  written_.emplace(name, false);
   return path;
 }
 

@@ -13,7 +13,7 @@ void Stage::declare(ParameterSet& params, PortSet& ports) {
 }
 
 void Stage::check(RunContext& ctx) {
-  ctx.bind_declarations(ports_);
+  ctx.bind_declarations(ports_, StageHook::check);
   if (params_)
     for (const auto& [name, why] : params_->broken_rules()) throw ParameterError(name, why);
   on_check(ctx);
@@ -22,14 +22,14 @@ void Stage::check(RunContext& ctx) {
 
 void Stage::configure(RunContext& ctx) {
   if (!checked_) check(ctx);
-  ctx.bind_declarations(ports_);
+  ctx.bind_declarations(ports_, StageHook::configure);
   on_configure(ctx);
   configured_ = true;
 }
 
 void Stage::process(StageIO& io, RunContext& ctx) {
   if (!configured_) throw std::logic_error("stage '" + ctx.stage_id() + "' processed before it was configured");
-  ctx.bind_declarations(ports_);
+  ctx.bind_declarations(ports_, StageHook::process);
   on_process(io, ctx);
   if (!ports_) return;
   for (const auto& out : ports_->outputs())
@@ -39,8 +39,15 @@ void Stage::process(StageIO& io, RunContext& ctx) {
 
 void Stage::finish(RunContext& ctx) {
   if (!configured_) throw std::logic_error("stage '" + ctx.stage_id() + "' finished before it was configured");
-  ctx.bind_declarations(ports_);
+  ctx.bind_declarations(ports_, StageHook::finish);
   on_finish(ctx);
+  // What a stage writes says what it is, so consumers never guess from names.
+  if (const auto files = ctx.files_without_role(); !files.empty()) {
+    std::string list;
+    for (const auto& f : files) list += (list.empty() ? "'" : ", '") + f + "'";
+    throw RunError("the stage wrote " + list + " without recording " + (files.size() > 1 ? "their" : "its") +
+                   " role (RunContext::artifact)");
+  }
 }
 
 }  // namespace touchcloud

@@ -1,6 +1,7 @@
 // contact_disc: keeps the points of a cloud within a radius of the gel's
 // axis, the disc where a palm sensor's contact is most reliable. A complete
-// plugin in one file: parameters, ports, a process hook and a metric.
+// plugin in one file: parameters, ports, a declared metric, a process hook,
+// and its category (geometry) in TOUCHCLOUD_PLUGIN.
 #include <touchcloud/plugin.hpp>
 #include <touchcloud/types/point_cloud.hpp>
 
@@ -18,6 +19,7 @@ class ContactDisc final : public touchcloud::Stage {
   void declare_ports(touchcloud::PortSet& ports) override {
     ports.input<touchcloud::CloudConstPtr>("cloud", "points, mm");
     ports.output<touchcloud::CloudConstPtr>("cloud", "points within the disc");
+    ports.metric("points_kept", "points", "points within the disc in the last cloud").final();
   }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
     const auto& in = io.input<touchcloud::CloudConstPtr>("cloud");

@@ -12,7 +12,7 @@ namespace touchcloud::learning {
 namespace F = torch::nn::functional;
 
 namespace {
-constexpr double kDropout = 0.5;  // after fc1 (the seed gives no rate; AlexNet's and Eigen's coarse stack's)
+constexpr double kDropout = 0.5;  // after fc1 (the report gives no rate; AlexNet's and Eigen's coarse stack's)
 
 TactileLayer conv(const std::string& name, int in, int out, int kernel, int out_height, int out_width) {
   TactileLayer l{name, in, out, kernel, out_height, out_width};

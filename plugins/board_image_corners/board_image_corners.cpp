@@ -37,6 +37,7 @@ class BoardImageCorners final : public Stage {
 
   void declare_ports(PortSet& ports) override {
     ports.output<BoardViewsPtr>("views", "the corners of every image pair, by corner id, matched left/right");
+    ports.metric("image_pairs", "", "left/right image pairs whose corners were found");
   }
 
   void on_check(RunContext&) override {

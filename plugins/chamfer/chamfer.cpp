@@ -1,7 +1,9 @@
 // chamfer: scores an estimated cloud against ground truth (a CAD mesh,
 // sampled uniformly by area, or a cloud) with the paper's single-directional
 // chamfer distance (Eq. 11) and the other metrics of `touchcloud score`.
+#include <filesystem>
 #include <iomanip>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -61,6 +63,26 @@ class Chamfer final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the estimated surface points, mm, in the ground truth's frame");
     ports.output<Score>("score", "the metrics, distances in mm");
+    ports.metric("chamfer_est_to_gt", "mm", "mean distance from each estimated point to the ground truth (Eq. 11)")
+        .lower_is_better()
+        .role(MetricRole::accuracy);
+    ports.metric("chamfer_gt_to_est", "mm", "mean distance from each ground-truth point to the estimate").lower_is_better();
+    ports.metric("chamfer_symmetric", "mm", "mean of the two chamfer directions").lower_is_better();
+    ports.metric("p95_est_to_gt", "mm", "95th percentile of the estimate's distances to the ground truth").lower_is_better();
+    ports.metric("hausdorff", "mm", "largest distance from either cloud to the other").lower_is_better();
+    ports.metric("fscore", "", "harmonic mean of precision and recall within fscore_threshold_mm").higher_is_better();
+    ports.metric("precision", "", "share of estimated points within fscore_threshold_mm of the ground truth")
+        .higher_is_better();
+    ports.metric("recall", "", "share of ground-truth points within fscore_threshold_mm of the estimate")
+        .higher_is_better();
+    ports.metric("final_chamfer_mm", "mm", "chamfer_est_to_gt (Eq. 11) of the last item").final().lower_is_better();
+    ports.metric("convergence_touches", "touches", "items after which chamfer_est_to_gt stays within 5 % of its final value")
+        .final()
+        .lower_is_better();
+    ports.metric("final_p95_mm", "mm", "p95_est_to_gt of the last item").final().lower_is_better();
+    ports.metric("final_hausdorff_mm", "mm", "hausdorff of the last item").final().lower_is_better();
+    ports.metric("final_fscore", "", "fscore of the last item").final().higher_is_better();
+    ports.artifact(ArtifactRole::ground_truth, "what was scored against and how it was sampled (no file)");
   }
 
   scoring::GroundTruthOptions ground_truth_options() const {
@@ -92,22 +114,39 @@ class Chamfer final : public Stage {
 
   // A run indexes once and scores every item against the same points.
   void on_configure(RunContext& ctx) override {
-    if (gt_) return;
-    try {
-      gt_.emplace(scoring::index_ground_truth(std::move(*file_), ground_truth_options()));
-    } catch (const InputError& e) {
-      throw ParameterError(scene_ ? "scene" : "ground_truth", e.what());
+    if (!gt_) {
+      try {
+        gt_.emplace(scoring::index_ground_truth(std::move(*file_), ground_truth_options()));
+      } catch (const InputError& e) {
+        throw ParameterError(scene_ ? "scene" : "ground_truth", e.what());
+      }
+      file_.reset();
+      std::ostringstream what;
+      what << gt_->points.size() << " ground-truth points from " << gt_->file.string();
+      if (scene_) what << " (the object of " << *scene_ << ")";
+      if (gt_->kind == scoring::GroundTruthKind::Mesh)
+        what << " (mesh of " << std::fixed << std::setprecision(1) << gt_->area_mm2 << " mm^2, sampled "
+             << std::setprecision(3) << gt_->sample_spacing_mm() << " mm apart on average)";
+      ctx.log(what.str());
     }
-    file_.reset();
-    if (!samples_ && gt_->kind == scoring::GroundTruthKind::Mesh)
-      ctx.used("samples", static_cast<std::int64_t>(gt_->points.size()));
-    std::ostringstream what;
-    what << gt_->points.size() << " ground-truth points from " << gt_->file.string();
-    if (scene_) what << " (the object of " << *scene_ << ")";
-    if (gt_->kind == scoring::GroundTruthKind::Mesh)
-      what << " (mesh of " << std::fixed << std::setprecision(1) << gt_->area_mm2 << " mm^2, sampled "
-           << std::setprecision(3) << gt_->sample_spacing_mm() << " mm apart on average)";
-    ctx.log(what.str());
+    const bool mesh = gt_->kind == scoring::GroundTruthKind::Mesh;
+    if (!samples_ && mesh) ctx.used("samples", static_cast<std::int64_t>(gt_->points.size()));
+    ctx.artifact(ArtifactRole::ground_truth, "", ground_truth_record());
+  }
+
+  // What the scores are against, and all it takes to draw the same points
+  // again: the file (absolute), its kind, and for a mesh the count and seed.
+  std::map<std::string, ParamValue> ground_truth_record() const {
+    const auto absolute = [](const std::filesystem::path& f) { return std::filesystem::absolute(f).lexically_normal().string(); };
+    std::map<std::string, ParamValue> r = {{"kind", std::string(scoring::to_string(gt_->kind))},
+                                           {"ground_truth", absolute(gt_->file)},
+                                           {"points", static_cast<std::int64_t>(gt_->points.size())}};
+    if (scene_) r["scene"] = absolute(*scene_);
+    if (gt_->kind == scoring::GroundTruthKind::Mesh) {
+      r["samples"] = static_cast<std::int64_t>(gt_->points.size());
+      r["sample_seed"] = sample_seed_;
+    }
+    return r;
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {

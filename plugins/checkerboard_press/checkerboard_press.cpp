@@ -58,6 +58,7 @@ class CheckerboardPress final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.output<MarkerSetPtr>("corners", "corner pixels of one press in both views; id = corner index (row-major)");
     ports.output<bool>("last_press", "true on the last press (use as the loop's until)");
+    ports.metric("corners_seen", "", "board corners of this press seen in both views");
   }
 
   void on_check(RunContext&) override {

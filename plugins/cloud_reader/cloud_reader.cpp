@@ -17,7 +17,11 @@ class CloudReader final : public Stage {
           {{"error", NonFinitePoints::Refuse}, {"drop", NonFinitePoints::Drop}})
         .doc("points with NaN or infinite coordinates: refuse the file, or drop them (counted in the summary)");
   }
-  void declare_ports(PortSet& ports) override { ports.output<CloudConstPtr>("cloud", "the points read, mm"); }
+  void declare_ports(PortSet& ports) override {
+    ports.output<CloudConstPtr>("cloud", "the points read, mm");
+    ports.metric("points", "points", "points read").final();
+    ports.metric("nonfinite_dropped", "points", "with on_nonfinite drop: non-finite points skipped").final();
+  }
 
   // Reading at check time lets `validate` report empty or corrupt files.
   void on_check(RunContext&) override {

@@ -46,6 +46,7 @@ class ContactMask final : public Stage {
     ports.input<ColourStereoFramePtr>("frame", "rectified colour pair now");
     ports.input<ColourStereoFramePtr>("reference", "the same sensor's pair without contact");
     ports.output<DenseMapsPtr>("mask", "contact mask of the left view (contact_mask), with the rectified camera");
+    ports.metric("contact_share", "1", "share of the left view's pixels in contact");
   }
 
   static void require_image(const cv::Mat& image, const std::string& where) {

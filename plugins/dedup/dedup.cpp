@@ -25,6 +25,9 @@ class Dedup final : public Stage {
     ports.input<CloudConstPtr>("cloud", "points of the latest touch, base frame");
     ports.output<CloudConstPtr>("accumulated", "every point kept so far");
     ports.output<CloudConstPtr>("added", "the points this touch added");
+    ports.metric("added_points", "points", "points this touch added (not within threshold_mm of earlier ones)")
+        .role(MetricRole::points_added);
+    ports.metric("total_points", "points", "points kept so far");
   }
   void on_configure(RunContext&) override { filter_ = std::make_unique<dedup::OverlapFilter>(threshold_mm_, overlap_); }
 

@@ -37,6 +37,25 @@ class DisparityMetrics final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<DenseMapsPtr>("disparity", "estimated left disparity (px) with its validity mask");
     ports.input<DenseMapsPtr>("truth", "true left disparity (px), its validity mask and the contact mask");
+    ports.metric("pair_abs_rel_all", "1", "this pair's Abs Rel over every valid pixel").lower_is_better();
+    ports.metric("pair_rmse_all_px", "px", "this pair's RMSE over every valid pixel").lower_is_better();
+    ports.metric("pair_contact_pixels", "px", "this pair's valid contact pixels");
+    ports.metric("pair_abs_rel_contact", "1", "this pair's Abs Rel over the contact region").lower_is_better();
+    ports.metric("pair_rmse_contact_px", "px", "this pair's RMSE over the contact region").lower_is_better();
+    for (const std::string region : {"all", "contact"}) {
+      const std::string over = region == "all" ? ", every pair, every valid pixel" : ", every pair, the contact region";
+      ports.metric("pixels_" + region, "px", "pixels with a true disparity" + over).final();
+      ports.metric("coverage_" + region, "1", "share of them with an estimate" + over).final().higher_is_better();
+      ports.metric("abs_rel_" + region, "1", "mean |d - d*| / d* (Abs Rel)" + over).final().lower_is_better();
+      ports.metric("sq_rel_" + region, "px", "mean (d - d*)^2 / d* (Sq Rel)" + over).final().lower_is_better();
+      ports.metric("rmse_" + region + "_px", "px", "root mean square error (RMSE)" + over).final().lower_is_better();
+      ports.metric("rmse_log_" + region, "1", "RMSE of log d (RMSE log)" + over).final().lower_is_better();
+      for (int k = 1; k <= 3; ++k)
+        ports.metric("delta" + std::to_string(k) + "_" + region, "1",
+                     "share with max(d / d*, d* / d) < 1.25^" + std::to_string(k) + over)
+            .final()
+            .higher_is_better();
+    }
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {

@@ -1,5 +1,5 @@
 // disparity_to_cloud: a dense tactile cloud from the disparity maps of the
-// colour-pattern GelStereo (seed 000, Eq. 7-9), in the sensor frame, and in
+// colour-pattern GelStereo (the GS-DepthNet paper, Eq. 7-9), in the sensor frame, and in
 // the base frame given the pose; with `refraction`, each pixel's two rays
 // traced through the plate as RSRT does (conversion/disparity_conversion.hpp).
 #include <numeric>
@@ -50,6 +50,10 @@ class DisparityToCloud final : public Stage {
     ports.output<CloudConstPtr>("cloud_base", "the same points in the base frame, mm");
     ports.output<TactileCloudPtr>("tactile", "the points with the reference's point of the same pixel and the "
                                              "displacement (needs input 'reference')");
+    ports.metric("points", "points", "points of this frame");
+    ports.metric("pixels_without_right_disparity", "pixels", "pixels, over every frame, whose match in the right map had no disparity")
+        .final();
+    ports.metric("pixels_not_triangulated", "pixels", "pixels, over every frame, whose rays gave no point").final();
   }
 
   void on_check(RunContext&) override { sensor_read_ = sensor_.load(true); }

@@ -28,6 +28,8 @@ class Downsample final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "points to thin, mm");
     ports.output<CloudConstPtr>("cloud", "the thinned cloud");
+    ports.metric("points_in", "points", "points given, over every call").final();
+    ports.metric("points_out", "points", "points kept, over every call").final();
   }
 
   CloudConstPtr voxel(const CloudConstPtr& in) const {

@@ -103,6 +103,21 @@ class GpSurface final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.output<SurfaceModelPtr>("surface", "the fitted surface");
+    ports.metric("lml", "", "log marginal likelihood at the selected hyperparameters (at each selection)")
+        .higher_is_better();
+    ports.metric("selection_points", "points", "points the hyperparameters were selected on (at each selection)");
+    ports.metric("selection_evaluations", "", "likelihood evaluations of the selection (at each selection)");
+    ports.metric("selection_s", "s", "time the selection took (at each selection)");
+    ports.metric("inducing_points", "points", "method sparse: inducing points of the fit");
+    ports.metric("vfe_bound", "", "method sparse: the variational free energy bound of the fit").higher_is_better();
+    ports.metric("jitter_mm2", "mm^2", "method exact: jitter added to the kernel matrix's diagonal to factorise it");
+    ports.metric("training_points", "points", "points the surface is fitted to");
+    ports.metric("update_path", "", "how the fit was updated: 0 unchanged, 1 bordered Cholesky update, 2 refactorised, "
+                 "3 hyperparameters selected");
+    ports.metric("lengthscale_mm", "mm", "kernel lengthscale");
+    ports.metric("signal_variance_mm2", "mm^2", "kernel signal variance");
+    ports.metric("noise_variance_mm2", "mm^2", "noise variance");
+    ports.metric("selections", "", "hyperparameter selections over the run").final();
   }
 
   // The touch is checked before it joins the training set: a non-finite

@@ -1,5 +1,5 @@
 // gs_depthnet: left and right disparity maps of a rectified colour pair by a
-// trained GS-DepthNet (seed 000, Section III; trained by gs_depthnet_train),
+// trained GS-DepthNet (the GS-DepthNet paper, Section III; trained by gs_depthnet_train),
 // output as stereo_disparity's are, so that disparity_to_cloud (Eq. 7's
 // average, then the cloud) and the evaluation take either. The network's
 // output is bounded, never missing: every pixel is marked valid. Refuses a

@@ -1,4 +1,4 @@
-// gs_depthnet_train: trains GS-DepthNet (seed 000, Section III-IV) on a
+// gs_depthnet_train: trains GS-DepthNet (the GS-DepthNet paper, Section III-IV) on a
 // dense stereo dataset folder, self-supervised (the images and the contact
 // masks; ground truth disparities, where the folder has them, only give
 // validation metrics per epoch), and writes a checkpoint (weights, the
@@ -119,7 +119,23 @@ class GsDepthNetTrain final : public Stage {
     });
   }
 
-  void declare_ports(PortSet&) override {}
+  void declare_ports(PortSet& ports) override {
+    ports.metric("parameters", "", "trainable parameters of the network");
+    ports.metric("gflops", "GFLOP", "floating-point operations of one forward pass on a pair");
+    ports.metric("training_s", "s", "time the training took");
+    ports.metric("epochs_run", "epochs", "epochs this run trained (after a resumed checkpoint's)");
+    ports.metric("final_loss", "", "total loss of the last epoch").lower_is_better();
+    ports.metric("final_appearance", "", "appearance (photometric) loss term of the last epoch").lower_is_better();
+    ports.metric("final_smoothness", "", "smoothness loss term of the last epoch").lower_is_better();
+    ports.metric("final_lr_consistency", "", "left-right consistency loss term of the last epoch").lower_is_better();
+    ports.metric("final_semantic", "", "semantic (contact) loss term of the last epoch").lower_is_better();
+    ports.metric("final_val_epe_px", "px", "mean end-point error on the pairs with true disparity, last epoch")
+        .lower_is_better();
+    ports.metric("final_val_epe_contact_px", "px", "the same over their contact region").lower_is_better();
+    ports.artifact(ArtifactRole::checkpoint, "the trained network: weights, architecture, input size, rest disparity");
+    ports.artifact(ArtifactRole::table, "the training curve, one row per epoch (CSV)");
+    ports.artifact(ArtifactRole::image, "the training curve as a picture");
+  }
 
   void on_check(RunContext& ctx) override {
     for (const auto& [param, file] : {std::pair<std::string, std::optional<std::string>>{"index", index_},
@@ -337,6 +353,11 @@ class GsDepthNetTrain final : public Stage {
     write_file(ctx.output_path(curve_csv_), lrn::curve_csv(records));
     write_file(ctx.output_path(curve_png_),
                lrn::curve_png(records, {"loss", "appearance", "smoothness", "lr_consistency", "semantic", "val_epe_px"}));
+    ctx.artifact(ArtifactRole::checkpoint, checkpoint_, {{"epochs_done", std::int64_t{epochs_}}});
+    ctx.artifact(ArtifactRole::table, curve_csv_);
+    ctx.artifact(ArtifactRole::image, curve_png_, 
+                 {{"caption", std::string("GS-DepthNet's training curve: the loss and its terms per epoch, and the "
+                                          "validation end-point error (px) where the pairs have true disparity")}});
     ctx.metric("training_s", seconds, "s");
     ctx.metric("epochs_run", static_cast<double>(records.size()), "epochs");
     if (!records.empty())

@@ -45,6 +45,8 @@ class HeightToCloud final : public Stage {
                                              "frame, mm, with the pose");
     ports.output<CloudConstPtr>("cloud", "the points, sensor frame, mm");
     ports.output<CloudConstPtr>("cloud_base", "the points in the base frame, mm");
+    ports.metric("points", "points", "points of this height map");
+    ports.metric("flat_presses", "frames", "with flat_press_mm: maps so far with no height anywhere, taken as the pad pressed that deep");
   }
 
   static void require_map(const HeightMapPtr& map, bool need_contact) {

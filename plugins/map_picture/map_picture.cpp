@@ -2,8 +2,9 @@
 // colour scale, with the colour bar and a legend: a dense stereo pipeline's
 // left disparity (px) beside the simulator's, or a GelSight-type pipeline's
 // height map (mm) beside the true one. The truth's contact region is
-// outlined on both. Written as a PNG or JPEG among the run's outputs, with a
-// caption (note `caption`) that the run's report shows beneath it.
+// outlined on both. Written as a PNG or JPEG among the run's outputs, an
+// image with a caption (its artifact's attribute) that the run's report
+// shows beneath it.
 #include <cmath>
 
 #include <opencv2/core/version.hpp>
@@ -45,6 +46,7 @@ class MapPicture final : public Stage {
     ports.one_of_inputs<HeightMapPtr>("estimate", "height", "estimated height map (mm)");
     ports.one_of_inputs<DenseMapsPtr>("truth", "disparity_truth", "true disparity maps with the contact mask");
     ports.one_of_inputs<HeightMapPtr>("truth", "height_truth", "true height map with the contact mask");
+    ports.artifact(ArtifactRole::image, "the picture, with its caption");
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -71,10 +73,11 @@ class MapPicture final : public Stage {
         range_ ? picture::ColourScale{(*range_)[0], (*range_)[1], unit} : picture::scale_of(truth, unit);
     const std::string path = ctx.with_iteration(path_);
     picture::write_picture(ctx, path, picture::draw_map_pair(estimate, truth, scale));
-    ctx.note("caption", quantity + " (" + unit + ") estimated (left) beside the ground truth (right), on one colour "
-                        "scale from " + rounded(scale.low) + " to " + rounded(scale.high) + " " + unit +
-                        (range_ ? " (colour_range)" : " (the truth's range)") +
-                        "; grey: no value" + (truth.contact_mask.empty() ? "" : "; white outline: the true contact region"));
+    ctx.artifact(ArtifactRole::image, path,
+                 {{"caption", quantity + " (" + unit + ") estimated (left) beside the ground truth (right), on one "
+                              "colour scale from " + rounded(scale.low) + " to " + rounded(scale.high) + " " + unit +
+                              (range_ ? " (colour_range)" : " (the truth's range)") + "; grey: no value" +
+                              (truth.contact_mask.empty() ? "" : "; white outline: the true contact region")}});
   }
 };
 

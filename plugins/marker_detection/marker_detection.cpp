@@ -68,6 +68,9 @@ class MarkerDetection final : public Stage {
                                         "one camera's image (a single-camera sensor), 8-bit grey or BGR");
     ports.output<MarkerSetPtr>("markers", "sub-pixel marker centres per view (id -1, quality in [0, 1]); "
                                           "matches empty; from `image`: its view only");
+    ports.metric("markers_left", "markers", "markers found in the left image");
+    ports.metric("markers_right", "markers", "markers found in the right image");
+    ports.metric("markers_mono", "markers", "markers found in a single camera's image");
   }
 
   void on_configure(RunContext&) override {

@@ -34,6 +34,12 @@ class MarkerMatching final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<MarkerSetPtr>("markers", "detected markers of both views (the first frame: no contact)");
     ports.output<MarkerSetPtr>("markers", "the same markers with ids, and the left/right pairs");
+    ports.metric("reference_pairs", "markers", "left/right pairs in the reference frame").final();
+    ports.metric("joined_later", "markers", "markers tracked from a later frame than the reference").final();
+    ports.metric("matched_mean", "markers", "matched pairs per frame, on average").final().higher_is_better();
+    ports.metric("matched_fewest", "markers", "matched pairs in the frame with the fewest").final().higher_is_better();
+    ports.metric("left_only_mean", "markers", "markers seen only in the left view per frame, on average").final();
+    ports.metric("right_only_mean", "markers", "markers seen only in the right view per frame, on average").final();
   }
 
   void on_check(RunContext&) override { sensor_read_ = sensor_.load(true); }

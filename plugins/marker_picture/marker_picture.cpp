@@ -2,8 +2,8 @@
 // by side with the markers detected in each and their left-right matches
 // (marker_detection -> marker_matching), for a person to see what the
 // sensing found: matched markers green, unmatched red, a few matches joined
-// by lines; a PNG or JPEG among the run's outputs, with a caption (note
-// `caption`) that the run's report shows beneath it.
+// by lines; a PNG or JPEG among the run's outputs, an image with a caption
+// (its artifact's attribute) that the run's report shows beneath it.
 #include <opencv2/core/version.hpp>
 
 #include "drawing/marker_pair.hpp"
@@ -37,6 +37,7 @@ class MarkerPicture final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<StereoFramePtr>("frame", "the stereo images the markers were found in");
     ports.input<MarkerSetPtr>("markers", "the markers of both views with their matches (marker_matching's output)");
+    ports.artifact(ArtifactRole::image, "the picture, with its caption");
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -47,11 +48,13 @@ class MarkerPicture final : public Stage {
     const std::string path = ctx.with_iteration(path_);
     const auto lines = static_cast<std::size_t>(match_lines_);
     picture::write_picture(ctx, path, picture::draw_marker_pair(frame->left, frame->right, *markers, layout, lines));
-    ctx.note("caption", "Left and right images of frame " + std::to_string(frame->index) + " with the markers detected (" +
-                            std::to_string(markers->left.size()) + " left, " + std::to_string(markers->right.size()) +
-                            " right): green, matched (" + std::to_string(markers->matches.size()) + " left-right " +
-                            "matches, " + std::to_string(picture::lined_matches(markers->matches.size(), lines).size()) +
-                            " of them joined by lines in colours of their own); red, without a match");
+    ctx.artifact(ArtifactRole::image, path,
+                 {{"caption", "Left and right images of frame " + std::to_string(frame->index) +
+                                  " with the markers detected (" + std::to_string(markers->left.size()) + " left, " +
+                                  std::to_string(markers->right.size()) + " right): green, matched (" +
+                                  std::to_string(markers->matches.size()) + " left-right matches, " +
+                                  std::to_string(picture::lined_matches(markers->matches.size(), lines).size()) +
+                                  " of them joined by lines in colours of their own); red, without a match"}});
   }
 };
 

@@ -20,6 +20,8 @@ class MarkerWriter final : public Stage {
   }
   void declare_ports(PortSet& ports) override {
     ports.input<MarkerSetPtr>("markers", "markers to write: pixel centres per view, ids, quality");
+    ports.metric("markers_written", "markers", "markers written in this file");
+    ports.artifact(ArtifactRole::markers, "the marker set, one row per marker and view");
   }
 
   void on_check(RunContext&) override {
@@ -40,6 +42,7 @@ class MarkerWriter final : public Stage {
     const bool json = file.extension() == ".json";
     write_file(file, json ? marker_writer::markers_json(*markers) : marker_writer::markers_csv(*markers));
     last_written_ = name;
+    ctx.artifact(ArtifactRole::markers, name);
     std::size_t count = 0;
     for (const CameraView view : markers->views) count += markers->of(view).size();
     ctx.metric("markers_written", static_cast<double>(count), "markers");

@@ -54,6 +54,14 @@ class NextTouch final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.optional_input<SurfaceModelPtr>("surface", "the model fitted so far (wire as fit.surface@previous)");
     ports.output<TouchTarget>("target", "the next touch position, base frame");
+    ports.metric("target_x_mm", "mm", "x of the chosen touch, base frame").role(MetricRole::touch_x_mm);
+    ports.metric("target_y_mm", "mm", "y of the chosen touch, base frame").role(MetricRole::touch_y_mm);
+    ports.metric("cell", "", "grid cell of the chosen touch (row-major)");
+    ports.metric("chosen_variance", "mm^2", "posterior variance at the chosen cell (model's choices only)");
+    ports.metric("mean_variance", "mm^2", "footprint_variance_reduction: mean posterior variance over the workspace");
+    ports.metric("expected_mean_variance", "mm^2",
+                 "footprint_variance_reduction: the mean expected after the chosen press");
+    ports.metric("footprint_cells", "cells", "footprint_variance_reduction: lattice points in the chosen press's footprint");
   }
   void on_check(RunContext&) override {
     grid_ = workspace_.resolve();
@@ -100,6 +108,8 @@ class NextTouch final : public Stage {
     touched_.insert(target.grid_index);
     ++calls_;
     ctx.metric("cell", target.grid_index);
+    ctx.metric("target_x_mm", target.xy_mm.x(), "mm");
+    ctx.metric("target_y_mm", target.xy_mm.y(), "mm");
     io.output("target", target);
   }
 };

@@ -44,6 +44,12 @@ class PhotometricCalibrationStage final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<MonoColourFramePtr>("image", "the sensor's image with the ball pressed in");
     ports.input<MonoColourFramePtr>("reference", "the same sensor's image without contact");
+    ports.metric("press_contact_radius_mm", "mm", "contact radius of the ball in this frame");
+    ports.metric("presses", "presses", "frames with a ball press found").final();
+    ports.metric("frames_skipped", "frames", "frames without a ball press").final();
+    ports.metric("samples", "px", "pixels the colour-to-gradient fit used").final();
+    ports.metric("rms_gradient", "1", "root mean square gradient residual of the fit").final().lower_is_better();
+    ports.artifact(ArtifactRole::calibration, "the photometric calibration file");
   }
 
   void on_check(RunContext&) override {
@@ -102,6 +108,7 @@ class PhotometricCalibrationStage final : public Stage {
     c.mm_per_px = sensor_.mm_per_px;
     c.gel_thickness_mm = sensor_.gel_thickness_mm;
     sensor::write_photometric_calibration(c, ctx.output_path(path_));
+    ctx.artifact(ArtifactRole::calibration, path_, {{"kind", std::string("photometric")}});
     ctx.metric("presses", static_cast<double>(presses_), "presses");
     ctx.metric("frames_skipped", static_cast<double>(skipped_), "frames");
     ctx.metric("samples", static_cast<double>(c.samples), "px");

@@ -48,6 +48,9 @@ class PhotometricDepth final : public Stage {
     ports.input<MonoColourFramePtr>("image", "the sensor's colour image now");
     ports.input<MonoColourFramePtr>("reference", "the same sensor's image without contact");
     ports.output<HeightMapPtr>("height", "height map (mm) with contact mask, pose of the image");
+    ports.metric("max_height_mm", "mm", "greatest height of this map");
+    ports.metric("flat_pixels", "px", "pixels whose colour difference was too small for a gradient");
+    ports.metric("contact_share", "1", "share of the pixels in contact");
   }
 
   void on_check(RunContext&) override {

@@ -57,6 +57,25 @@ class RsrtCalibration final : public Stage {
     ports.optional_input<BoardViewsPtr>("views", "every press at once: corners found in images (board_image_corners)");
     ports.optional_input<StereoCamerasPtr>("cameras", "the cameras from stereo calibration; replace the initial "
                                                       "guess's intrinsics, distortion and right_from_left");
+    ports.metric("press_corners", "", "corners of each press");
+    ports.metric("press_corner_error_mm", "mm", "each press's mean corner-distance error through the calibrated rig")
+        .lower_is_better();
+    ports.metric("mean_corner_error_before_mm", "mm", "mean corner-distance error with the initial guess").final();
+    ports.metric("mean_corner_error_after_mm", "mm", "mean corner-distance error after calibration")
+        .final()
+        .lower_is_better();
+    ports.metric("d_xy_mm", "mm", "calibrated distance of the plate from the left camera").final();
+    ports.metric("plate_tilt_x_deg", "deg", "calibrated plate tilt about x").final();
+    ports.metric("plate_tilt_y_deg", "deg", "calibrated plate tilt about y").final();
+    ports.metric("normal_change_deg", "deg", "angle between the initial and calibrated plate normals").final();
+    ports.metric("mu_silicone", "", "calibrated refractive index of the gel").final();
+    ports.metric("sigma_d_xy_mm", "mm", "standard deviation of d_xy_mm").final().lower_is_better();
+    ports.metric("sigma_normal_deg", "deg", "standard deviation of the plate normal").final().lower_is_better();
+    ports.metric("sigma_mu_silicone", "", "standard deviation of mu_silicone").final().lower_is_better();
+    ports.metric("condition_number", "", "condition number of the fit's Jacobian").final().lower_is_better();
+    ports.metric("max_board_tilt_deg", "deg", "largest board tilt among the presses").final();
+    ports.metric("iterations", "", "iterations of the least-squares solver").final();
+    ports.artifact(ArtifactRole::calibration, "the sensor file with the calibrated plate");
   }
 
   void on_check(RunContext&) override {
@@ -164,6 +183,7 @@ class RsrtCalibration final : public Stage {
       throw ParameterError("output", e.detail());
     }
     sensor::write_gelstereo_sensor(sensor, file, comment.str());
+    ctx.artifact(ArtifactRole::calibration, output_, {{"kind", std::string("gelstereo_sensor")}});
 
     ctx.metric("mean_corner_error_before_mm", result.mean_corner_error_before_mm, "mm");
     ctx.metric("mean_corner_error_after_mm", result.mean_corner_error_after_mm, "mm");

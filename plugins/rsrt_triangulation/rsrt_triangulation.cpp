@@ -25,6 +25,14 @@ class RsrtTriangulation final : public Stage {
     ports.input<MarkerSetPtr>("markers", "matched markers with ids (marker_matching)");
     ports.optional_input<SensorPose>("pose", "the sensor pose in the base frame when the frame was taken");
     ports.output<TactileCloudPtr>("tactile", "marker positions (sensor frame), their reference and displacements");
+    ports.metric("points_mean", "points", "points per frame, on average").final();
+    ports.metric("gap_mean_mm", "mm", "mean distance between a pair's two rays").final().lower_is_better();
+    ports.metric("gap_max_mm", "mm", "largest distance between a pair's two rays").final().lower_is_better();
+    ports.metric("refused_degenerate", "pairs", "pairs refused: rays (nearly) parallel").final();
+    ports.metric("refused_behind_gel_face", "pairs", "pairs refused: the rays meet behind their origin (the gel's face)").final();
+    ports.metric("refused_left_ray", "pairs", "pairs refused: the left pixel gave no ray").final();
+    ports.metric("refused_right_ray", "pairs", "pairs refused: the right pixel gave no ray").final();
+    ports.metric("refused_gap", "pairs", "pairs refused: rays farther apart than max_gap_mm").final();
   }
 
   void on_check(RunContext&) override { sensor_read_ = sensor_.load(refraction_); }

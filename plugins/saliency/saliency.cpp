@@ -22,6 +22,7 @@ class Saliency final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<TactileCloudPtr>("tactile", "the recorded tactile cloud with displacements");
     ports.output<CloudConstPtr>("cloud", "salient marker positions, mm");
+    ports.metric("salient_points", "points", "salient markers kept from this touch");
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {

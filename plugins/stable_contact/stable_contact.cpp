@@ -28,6 +28,7 @@ class StableContact final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<TactileCloudPtr>("tactile", "marker cloud with its no-contact reference");
     ports.output<ContactState>("state", "max displacement, consecutive-contact counter, stable flag");
+    ports.metric("frames_to_stable", "frames", "frames from first contact to stable contact, for each touch");
   }
 
   static double max_displacement_mm(const TactileCloud& t) {

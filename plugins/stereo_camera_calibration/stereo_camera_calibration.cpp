@@ -36,6 +36,17 @@ class StereoCameraCalibration final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<BoardViewsPtr>("views", "the board's corners in every image pair (board_image_corners)");
     ports.output<StereoCamerasPtr>("cameras", "intrinsics, distortion and right_from_left (mm) of both cameras");
+    ports.metric("image_rms_left_px", "px", "reprojection RMS of each image pair's left view").lower_is_better();
+    ports.metric("image_rms_right_px", "px", "reprojection RMS of each image pair's right view").lower_is_better();
+    ports.metric("rms_px", "px", "reprojection RMS of the stereo calibration").lower_is_better();
+    for (const std::string camera : {"left", "right"}) {
+      ports.metric(camera + "_fx_px", "px", camera + " camera's focal length along x");
+      ports.metric(camera + "_fy_px", "px", camera + " camera's focal length along y");
+      ports.metric(camera + "_cx_px", "px", camera + " camera's principal point, x");
+      ports.metric(camera + "_cy_px", "px", camera + " camera's principal point, y");
+    }
+    ports.metric("baseline_mm", "mm", "distance between the cameras' centres");
+    ports.metric("right_rotation_deg", "deg", "rotation of the right camera from the left");
   }
 
   void on_check(RunContext&) override { board_ = sensor::Checkerboard::from_parameters(board_corners_, square_mm_); }

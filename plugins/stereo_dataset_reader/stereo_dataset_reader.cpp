@@ -39,6 +39,7 @@ class StereoDatasetReader final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.output<ColourStereoFramePtr>("frame", "the next row's rectified colour pair (pose unknown: identity)");
     ports.output<DenseMapsPtr>("truth", "its ground truth (the row must list it)");
+    ports.metric("pairs_read", "pairs", "pairs read so far");
   }
 
   std::string where(const io::StereoDatasetRow& row) const {

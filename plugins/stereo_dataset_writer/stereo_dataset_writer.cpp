@@ -33,6 +33,8 @@ class StereoDatasetWriter final : public Stage {
   void declare_ports(PortSet& ports) override {
     ports.input<ColourStereoFramePtr>("frame", "rectified colour pair");
     ports.optional_input<DenseMapsPtr>("truth", "its ground truth (disparities, depth, contact mask)");
+    ports.metric("pairs_written", "pairs", "pairs written into the dataset").final();
+    ports.artifact(ArtifactRole::dataset, "the dataset's images, ground truth, index and camera files");
   }
 
   // Encodes `image` as `extension` and writes it (every write checked); the
@@ -45,6 +47,7 @@ class StereoDatasetWriter final : public Stage {
       throw RunError("OpenCV could not encode " + name + extension + " (" + cv::typeToString(image.type()) + ")");
     field = name + extension;
     write_file(ctx.output_path(folder_ + "/" + field), std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    ctx.artifact(ArtifactRole::dataset, folder_ + "/" + field, {{"dataset", folder_}});
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -78,6 +81,8 @@ class StereoDatasetWriter final : public Stage {
     if (rows_.empty()) return;
     write_file(ctx.output_path(folder_ + "/" + io::kDatasetIndex), io::dataset_index_text(rows_));
     write_file(ctx.output_path(folder_ + "/" + io::kDatasetCamera), io::rectified_camera_text(*camera_));
+    for (const std::string file : {io::kDatasetIndex, io::kDatasetCamera})
+      ctx.artifact(ArtifactRole::dataset, folder_ + "/" + file, {{"dataset", folder_}});
     ctx.metric("pairs_written", static_cast<double>(rows_.size()), "pairs");
   }
 };

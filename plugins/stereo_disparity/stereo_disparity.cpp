@@ -1,5 +1,5 @@
 // stereo_disparity: dense left and right disparity maps of a rectified colour
-// pair by OpenCV's StereoBM or StereoSGBM (seed 000's classical baselines,
+// pair by OpenCV's StereoBM or StereoSGBM (the GS-DepthNet paper's classical baselines,
 // Table I's BM and SGBM rows), with a left-right consistency check; invalid
 // pixels are marked, not guessed. The matcher is matcher/disparity_matcher.hpp.
 #include <optional>
@@ -67,6 +67,8 @@ class StereoDisparity final : public Stage {
     ports.input<ColourStereoFramePtr>("frame", "rectified colour pair (8-bit BGR or grey, both the same size)");
     ports.output<DenseMapsPtr>("disparity", "left and right disparity maps (px) with validity masks, and the "
                                             "rectified camera");
+    ports.metric("valid_left_share", "1", "share of the left map's pixels with a disparity").higher_is_better();
+    ports.metric("valid_right_share", "1", "share of the right map's pixels with a disparity").higher_is_better();
   }
 
   void on_configure(RunContext&) override { matcher_.emplace(o_); }

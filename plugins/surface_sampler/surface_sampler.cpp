@@ -64,6 +64,11 @@ class SurfaceSampler final : public Stage {
     ports.optional_input<CloudConstPtr>("points", "the points the surface was fitted to, base frame (wire as "
                                         "dedup.accumulated): the mean is checked against those beside it");
     ports.output<CloudConstPtr>("cloud", "surface points (x, y, mean z), base frame, mm");
+    ports.metric("extrapolated_points", "points", "lattice points whose mean lies outside the data's z range by more "
+                 "than outside_data_margin_mm");
+    ports.metric("uncertain_points", "points", "with max_sd_mm: lattice points whose standard deviation exceeds it");
+    ports.metric("off_data_points", "points", "with points wired: lattice points whose mean swings off the data beside "
+                 "them");
   }
   void on_check(RunContext&) override { area_ = workspace_.resolve(); }
   void on_configure(RunContext& ctx) override { workspace_.record_used(area_, ctx); }

@@ -1,5 +1,5 @@
 // tactile_dataset_reader: one tactile image with its height map and contact
-// mask per call from a dataset folder (seed 001's TactileDataset layout:
+// mask per call from a dataset folder (the ContactNet/TactileDepthNet report's TactileDataset layout:
 // touchcloud/io/tactile_dataset.hpp), simulated or recorded; the train or
 // validation split, or both. The layout (paired images and height maps) is
 // checked before the run starts.
@@ -42,6 +42,7 @@ class TactileDatasetReader final : public Stage {
     ports.output<MonoColourFramePtr>("image", "the next sample's tactile image (pose unknown: identity)");
     ports.output<HeightMapPtr>("height", "its height map (mm) and contact mask");
     ports.output<MonoColourFramePtr>("reference", "the dataset's no-contact image (reference.png must exist)");
+    ports.metric("samples_read", "samples", "samples read so far");
   }
 
   void on_check(RunContext&) override {

@@ -1,6 +1,6 @@
 // tactile_dataset_writer: tactile images of a GelSight-type sensor with their
 // height maps and contact masks into a dataset folder in the output folder
-// (seed 001's TactileDataset layout: touchcloud/io/tactile_dataset.hpp),
+// (the ContactNet/TactileDepthNet report's TactileDataset layout: touchcloud/io/tactile_dataset.hpp),
 // every fifth sample into validation/; the reference image with the first
 // sample, dataset.yaml at the end.
 #include <opencv2/core/version.hpp>
@@ -37,6 +37,9 @@ class TactileDatasetWriter final : public Stage {
     ports.input<MonoColourFramePtr>("image", "the tactile image");
     ports.input<HeightMapPtr>("height", "its height map (mm) and contact mask (e.g. touch_simulator.height_truth)");
     ports.optional_input<MonoColourFramePtr>("reference", "the no-contact image (written once)");
+    ports.metric("samples_written", "samples", "samples written into the dataset").final();
+    ports.metric("validation_samples", "samples", "of them, samples in the validation split").final();
+    ports.artifact(ArtifactRole::dataset, "the dataset's images, height maps, contact masks and info file");
   }
 
   void write_image(RunContext& ctx, const cv::Mat& image, const std::string& path) {
@@ -46,6 +49,7 @@ class TactileDatasetWriter final : public Stage {
       throw RunError("OpenCV could not encode " + path + " (" + cv::typeToString(image.type()) + ")");
     write_file(ctx.output_path(folder_ + "/" + path),
                std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    ctx.artifact(ArtifactRole::dataset, folder_ + "/" + path, {{"dataset", folder_}});
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -82,6 +86,7 @@ class TactileDatasetWriter final : public Stage {
   void on_finish(RunContext& ctx) override {
     if (!info_) return;
     write_file(ctx.output_path(folder_ + "/" + io::kTactileDatasetInfo), io::tactile_dataset_info_text(*info_));
+    ctx.artifact(ArtifactRole::dataset, folder_ + "/" + io::kTactileDatasetInfo, {{"dataset", folder_}});
     ctx.metric("samples_written", static_cast<double>(samples_), "samples");
     ctx.metric("validation_samples", static_cast<double>(validation_), "samples");
   }

@@ -1,12 +1,12 @@
-// tactile_net_train: trains one of seed 001's networks (learning/
+// tactile_net_train: trains one of the ContactNet/TactileDepthNet report's networks (learning/
 // tactile_nets.hpp) on a tactile dataset folder (touchcloud/io/
 // tactile_dataset.hpp: its train/ split, with validation/ scored after every
 // epoch), supervised: ContactNet on the contact masks (BCE), TactileDepthNet
 // on the height maps (L2) with a trained ContactNet's probability as its
-// fourth input channel. Adam, the seed's augmentation; writes a checkpoint
+// fourth input channel. Adam, the report's augmentation; writes a checkpoint
 // (weights, the optimiser's state, architecture, input size, toolkit
 // version, the dataset's sensor) and the train and validation loss per epoch
-// (CSV + PNG: the seed's Figures 2-3). Resumable from a checkpoint of the
+// (CSV + PNG: the report's Figures 2-3). Resumable from a checkpoint of the
 // same network; deterministic given --seed on one machine and thread count.
 #include <chrono>
 #include <climits>
@@ -69,17 +69,17 @@ class TactileNetTrain final : public Stage {
     });
     p.add("width", shape_.width, 8).range(1, 256).unit("channels")
         .doc("base channel count (ContactNet: convolutions c, 2c, 2c, 4c, c, fc1 8c; TactileDepthNet: 2c)");
-    p.add("epochs", epochs_, 10).range(1, 100000).unit("epochs").doc("epochs in all (the seed: 10; a resumed run continues to this)");
+    p.add("epochs", epochs_, 10).range(1, 100000).unit("epochs").doc("epochs in all (the report: 10; a resumed run continues to this)");
     p.add("batch_size", batch_size_, 8).range(1, 4096).unit("samples").doc("samples per Adam step");
-    p.add("learning_rate", schedule_.initial, 1e-3).above(0).doc("Adam's learning rate (the seed: 0.001)");
+    p.add("learning_rate", schedule_.initial, 1e-3).above(0).doc("Adam's learning rate (the report: 0.001)");
     p.add("constant_epochs", constant_epochs_).at_least(0).unit("epochs")
-        .doc("epochs before the rate is halved (not set: constant throughout, as the seed)");
+        .doc("epochs before the rate is halved (not set: constant throughout, as the report)");
     p.add("halve_every", schedule_.halve_every, 10).at_least(1).unit("epochs")
         .doc("after constant_epochs, the rate is halved every this many epochs");
     p.add("max_rotation_deg", augmentation_.max_rotation_deg, 5.0).range(0, 180).unit("deg")
-        .doc("augmentation: each training sample rotated by a uniform angle within +- this (the seed: 5)");
+        .doc("augmentation: each training sample rotated by a uniform angle within +- this (the report: 5)");
     p.add("flip_probability", augmentation_.flip_probability, 0.5).range(0, 1)
-        .doc("augmentation: probability of a left-right flip (the seed: 0.5)");
+        .doc("augmentation: probability of a left-right flip (the report: 0.5)");
     p.add("checkpoint", checkpoint_, std::string("tactile_net.ckpt")).output_file().doc("checkpoint file written");
     p.add("curve_csv", curve_csv_, std::string("tactile_net_curve.csv")).output_file()
         .doc("train and validation loss (and the validation metric) per epoch");
@@ -92,7 +92,21 @@ class TactileNetTrain final : public Stage {
     p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
   }
 
-  void declare_ports(PortSet&) override {}
+  void declare_ports(PortSet& ports) override {
+    ports.metric("parameters", "", "trainable parameters of the network");
+    ports.metric("gflops", "GFLOP", "floating-point operations of one forward pass on an image");
+    ports.metric("training_s", "s", "time the training took");
+    ports.metric("epochs_run", "epochs", "epochs this run trained (after a resumed checkpoint's)");
+    ports.metric("final_loss", "", "training loss of the last epoch").lower_is_better();
+    ports.metric("final_val_loss", "", "validation loss of the last epoch").lower_is_better();
+    ports.metric("final_val_iou", "", "ContactNet: contact IoU on the validation split, last epoch").higher_is_better();
+    ports.metric("final_val_rmse_contact_mm", "mm",
+                 "TactileDepthNet: height RMSE over the true contact on the validation split, last epoch")
+        .lower_is_better();
+    ports.artifact(ArtifactRole::checkpoint, "the trained network: weights, architecture, input size, normalisation");
+    ports.artifact(ArtifactRole::table, "the train/validation loss curve, one row per epoch (CSV)");
+    ports.artifact(ArtifactRole::image, "the loss curve as a picture");
+  }
 
   void on_check(RunContext&) override {
     const fs::path folder = fs::path(dataset_file_).parent_path();
@@ -256,6 +270,10 @@ class TactileNetTrain final : public Stage {
     write_file(ctx.output_path(checkpoint_), lrn::checkpoint_bytes(c));
     write_file(ctx.output_path(curve_csv_), lrn::curve_csv(records));
     write_file(ctx.output_path(curve_png_), lrn::curve_png(records, {"loss", "val_loss"}));
+    ctx.artifact(ArtifactRole::checkpoint, checkpoint_, {{"epochs_done", std::int64_t{epochs_}}});
+    ctx.artifact(ArtifactRole::table, curve_csv_);
+    ctx.artifact(ArtifactRole::image, curve_png_, 
+                 {{"caption", std::string("Training curve: training and validation loss per epoch")}});
     ctx.metric("training_s", seconds, "s");
     ctx.metric("epochs_run", static_cast<double>(records.size()), "epochs");
     if (!records.empty())
@@ -294,5 +312,5 @@ class TactileNetTrain final : public Stage {
 }  // namespace touchcloud
 
 TOUCHCLOUD_PLUGIN(touchcloud::TactileNetTrain, "tactile_net_train", learning,
-                  "Trains ContactNet or TactileDepthNet (seed 001) on a tactile dataset folder; writes a checkpoint "
+                  "Trains ContactNet or TactileDepthNet on a tactile dataset folder; writes a checkpoint "
                   "and the train/validation loss curve")

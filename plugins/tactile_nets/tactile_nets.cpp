@@ -1,5 +1,5 @@
 // tactile_nets: the height map (mm) and contact mask of a GelSight-type image
-// by seed 001's trained networks (ContactNet, then TactileDepthNet on the
+// by the trained networks of the ContactNet/TactileDepthNet report (ContactNet, then TactileDepthNet on the
 // image and ContactNet's probability; trained by tactile_net_train), output
 // as photometric_depth's are, so that height_to_cloud and the evaluation
 // take either. Refuses checkpoints of other networks or of different input
@@ -42,6 +42,8 @@ class TactileNets final : public Stage {
     ports.input<MonoColourFramePtr>("image", "the sensor's colour image now (8-bit BGR, the networks' input size)");
     ports.input<MonoColourFramePtr>("reference", "the same sensor's image without contact");
     ports.output<HeightMapPtr>("height", "height map (mm) with ContactNet's contact mask, pose of the image");
+    ports.metric("max_height_mm", "mm", "greatest height of this map");
+    ports.metric("contact_share", "1", "share of the pixels ContactNet puts in contact");
   }
 
   void on_check(RunContext&) override {
@@ -115,4 +117,4 @@ class TactileNets final : public Stage {
 }  // namespace touchcloud
 
 TOUCHCLOUD_PLUGIN(touchcloud::TactileNets, "tactile_nets", learning,
-                  "Height map and contact mask of a GelSight-type image by ContactNet and TactileDepthNet (seed 001)")
+                  "Height map and contact mask of a GelSight-type image by ContactNet and TactileDepthNet")

@@ -8,7 +8,7 @@
 //   render()            the colour image (`render`; pixel_noise, blur)
 //   render_reference()  the no-contact image (no noise)
 //   height_truth()      the height map with a contact mask from a threshold
-//                       on it (the seed's ground truth)
+//                       on it (the TactileDataset's ground truth)
 //   truth_tactile()     the pressed pad's surface on a pixel grid as a
 //                       tactile cloud (displacement: the height), for
 //                       stable_contact as the robot's controller would see it

@@ -111,6 +111,26 @@ class TouchSimulator final : public Stage {
                                                "(true height > truth_contact_threshold_mm)");
     ports.output<SensorPose>("pose", "the sensor pose the robot reports");
     ports.output<bool>("touch_done", "true on the recorded frame (stable contact, then the further press)");
+    ports.metric("touch_frames", "frames", "frames of each touch, first to recorded");
+    ports.metric("press_travel_mm", "mm", "how far the sensor travelled past first contact in each touch");
+    ports.metric("press_depth_mm", "mm", "how deep the gel was pressed at each touch's recorded frame");
+    ports.metric("apex_above_target_mm", "mm", "how far above the object's surface at the target the pressed gel apex "
+                 "stopped, each touch (0: it reached it)")
+        .lower_is_better();
+    ports.metric("unreachable_touches", "touches", "touches whose apex stopped more than reach_tolerance_mm above the "
+                 "surface at their target")
+        .final()
+        .lower_is_better();
+    ports.metric("frames_simulated", "frames", "frames simulated").final();
+    ports.metric("frames_projected", "frames", "GelStereo: frames whose markers were projected into the cameras").final();
+    ports.metric("frames_rendered", "frames", "frames rendered into images").final();
+    ports.metric("touches", "touches", "touches completed").final();
+    ports.metric("markers", "markers", "GelStereo: markers on the gel").final();
+    ports.metric("marker_mean_spacing_mm", "mm", "GelStereo: mean distance from a marker to its nearest neighbour").final();
+    ports.metric("marker_min_spacing_mm", "mm", "GelStereo: least distance between two markers").final();
+    ports.metric("markers_seen_left", "markers", "GelStereo: markers at rest inside the left image").final();
+    ports.metric("markers_seen_right", "markers", "GelStereo: markers at rest inside the right image").final();
+    ports.metric("markers_seen_both", "markers", "GelStereo: markers at rest inside both images").final();
   }
 
   // The scene with the robot values this stage sets; an unreadable mesh is

@@ -67,6 +67,7 @@ class ScratchFolder {
 
 struct Result {
   py::dict metrics, outputs, times;
+  py::list artifacts;
   std::vector<std::string> without_python_form;  // wired outputs left out of `outputs` (a plugin's own types)
   py::object summary;
   std::string out;  // the output folder, "" when the run wrote to a scratch folder
@@ -88,9 +89,17 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
     r = run_pipeline(pipeline, options);
   }
   Result result;
-  for (const auto& [name, series] : r.record.metrics)
-    result.metrics[py::str(name)] =
-        py::dict(py::arg("value") = series.values.back(), py::arg("unit") = series.spec.unit, py::arg("series") = series.values);
+  const auto or_none = [](MetricDirection d, const char* text) -> py::object {
+    return d == MetricDirection::none ? py::object(py::none()) : py::object(py::str(text));
+  };
+  for (const auto& [name, series] : r.record.metrics) {
+    const MetricSpec& spec = series.spec;
+    result.metrics[py::str(name)] = py::dict(
+        py::arg("value") = series.values.back(), py::arg("unit") = spec.unit, py::arg("series") = series.values,
+        py::arg("doc") = spec.doc, py::arg("when") = to_string(spec.when),
+        py::arg("direction") = or_none(spec.direction, to_string(spec.direction)),
+        py::arg("role") = spec.role == MetricRole::none ? py::object(py::none()) : py::object(py::str(to_string(spec.role))));
+  }
   for (const auto& [key, value] : r.captured) {
     try {
       result.outputs[py::str(key)] = to_python(key, value);
@@ -100,6 +109,16 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
     }
   }
   result.summary = py::module_::import("json").attr("loads")(r.summary_json);
+  // As summary.json records them, with each file's absolute path where it
+  // stays (out given; a scratch folder goes with the run).
+  for (const auto& a : result.summary["artifacts"]) {
+    py::dict entry = py::reinterpret_borrow<py::dict>(a).attr("copy")().cast<py::dict>();
+    py::object path = py::none();
+    if (out && !entry["file"].is_none())
+      path = py::str(fs::absolute(fs::path(*out) / entry["file"].cast<std::string>()).lexically_normal().string());
+    entry["path"] = path;
+    result.artifacts.append(entry);
+  }
   py::dict stages;
   for (const auto& t : r.timings)
     stages[py::str(t.id)] = py::dict(py::arg("plugin") = t.plugin, py::arg("check_s") = t.check_s,
@@ -116,7 +135,12 @@ py::object json_value(const nlohmann::json& j) { return py::module_::import("jso
 
 void bind_run(py::module_& m) {
   py::class_<Result>(m, "Result", "What a run gives back")
-      .def_readonly("metrics", &Result::metrics, "name -> {value, unit, series}: the last value and one per loop pass")
+      .def_readonly("metrics", &Result::metrics,
+                    "'stage.metric' -> {value, unit, series, doc, when, direction, role}: the last value, one per loop "
+                    "pass, and the metric's declaration (direction and role None where it has none)")
+      .def_readonly("artifacts", &Result::artifacts,
+                    "what the stages wrote or recorded, in order: {stage, role, file, path, attributes}; file relative "
+                    "to the output folder (None for a record without one), path absolute (None when out was None)")
       .def_readonly("outputs", &Result::outputs, "'stage.port' -> value: clouds as N x 3 float32 arrays in mm, ...")
       .def_readonly("summary", &Result::summary, "the same dict as summary.json")
       .def_readonly("times", &Result::times, "wall_s, load_s and per stage check/configure/process/finish seconds")

@@ -146,15 +146,95 @@ def test_image_outputs_are_embedded_and_missing_ones_named(run_dir, tmp_path):
     shutil.copytree(run_dir, folder)
     matplotlib.image.imsave(str(folder / "left.png"), np.linspace(0, 1, 64 * 48).reshape(48, 64))
     s = json.loads((folder / "summary.json").read_text())
-    s["outputs"] += ["left.png", "gone.png"]
+    s["outputs"] += ["left.png", "gone.png", "right.png"]
+    # Pictures are what the stages record as images; a PNG of another role is not one.
+    s["artifacts"] += [{"stage": "view", "role": "image", "file": "left.png", "attributes": {"caption": "Left view"}},
+                       {"stage": "view", "role": "image", "file": "gone.png", "attributes": {}},
+                       {"stage": "view", "role": "dataset", "file": "right.png", "attributes": {}}]
+    matplotlib.image.imsave(str(folder / "right.png"), np.zeros((4, 4)))
     (folder / "summary.json").write_text(json.dumps(s))
     r = cli("report", folder)
     assert r.returncode == 0, r.stderr
     data = embedded_data((folder / "report.html").read_text())
     (image,) = data["images"]
-    assert (image["name"], image["mime"]) == ("left.png", "image/png")
+    assert (image["name"], image["mime"], image["caption"]) == ("left.png", "image/png", "Left view")
     assert base64.b64decode(image["base64"]) == (folder / "left.png").read_bytes()
     assert data["missing"] == ["image gone.png: not found"]
+
+
+# A small scoring run written here: an estimate read from a file, scored by
+# chamfer against a square mesh sampled at `samples` points with
+# `sample_seed`. Paths in the pipeline are relative to its folder.
+SQUARE_OBJ = "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3\nf 1 3 4\n"
+
+
+def scoring_run(folder, sample_seed, samples=500):
+    import numpy as np
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "square.obj").write_text(SQUARE_OBJ)
+    grid = np.stack(np.meshgrid(np.linspace(0.5, 9.5, 7), np.linspace(0.5, 9.5, 7)), -1).reshape(-1, 2)
+    estimate = np.column_stack([grid, np.full(len(grid), 0.25)])
+    (folder / "estimate.pcd").write_text(
+        f"VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH {len(estimate)}\nHEIGHT 1\n"
+        f"VIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(estimate)}\nDATA ascii\n" +
+        "".join(f"{x} {y} {z}\n" for x, y, z in estimate))
+    (folder / "score.yaml").write_text(
+        "pipeline: square\nstages:\n"
+        "  - id: read\n    plugin: cloud_reader\n    params: {path: estimate.pcd}\n"
+        f"  - id: score\n    plugin: chamfer\n    params: {{ground_truth: square.obj, samples: {samples}, "
+        f"sample_seed: {sample_seed}}}\n    inputs: {{cloud: read.cloud}}\n")
+    out = folder / "out"
+    # Run from the pipeline's folder, with the pipeline named relative to it.
+    r = subprocess.run([str(CLI), "run", "score.yaml", "--out", "out", "-q"], cwd=folder, capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    return out, estimate
+
+
+def ground_truth_shown(data):
+    import base64
+    import numpy as np
+    gt = data["clouds"]["ground_truth"]
+    return np.frombuffer(base64.b64decode(gt["xyz"]), dtype="<f4").reshape(-1, 3).astype(float)
+
+
+def test_report_draws_the_ground_truth_the_stage_scored_against(tmp_path):
+    import numpy as np
+    out, estimate = scoring_run(tmp_path / "run", sample_seed=7)
+    summary = json.loads((out / "summary.json").read_text())
+    report = lambda folder: subprocess.run([str(CLI), "report", "out"], cwd=folder, capture_output=True, text=True,
+                                           timeout=120)
+    r = report(tmp_path / "run")  # from the folder the run started in
+    assert r.returncode == 0, r.stderr
+    data = embedded_data((out / "report.html").read_text())
+    gt = ground_truth_shown(data)
+    assert len(gt) == 500 and data["clouds"]["ground_truth"]["shown"] == 500
+    # The points drawn give the chamfer the stage reported (Eq. 11: each
+    # estimated point's distance to its nearest ground-truth point) ...
+    nearest = np.sqrt(((estimate[:, None, :] - gt[None, :, :]) ** 2).sum(-1)).min(1)
+    reported = summary["metrics"]["score.chamfer_est_to_gt"]["value"]
+    assert nearest.mean() == pytest.approx(reported, rel=1e-5, abs=1e-5)
+    (truth,) = [a for a in summary["artifacts"] if a["role"] == "ground_truth"]
+    assert truth["attributes"]["sample_seed"] == 7 and truth["attributes"]["samples"] == 500
+    # ... which other samples (sample_seed 0's) would not.
+    seed0_out, _ = scoring_run(tmp_path / "seed0", sample_seed=0)
+    assert report(tmp_path / "seed0").returncode == 0
+    seed0 = ground_truth_shown(embedded_data((seed0_out / "report.html").read_text()))
+    assert not np.array_equal(seed0, gt)
+    nearest0 = np.sqrt(((estimate[:, None, :] - seed0[None, :, :]) ** 2).sum(-1)).min(1)
+    assert abs(nearest0.mean() - reported) > 1e-4
+
+
+def test_report_finds_the_ground_truth_from_any_folder(tmp_path):
+    out, _ = scoring_run(tmp_path / "started_here", sample_seed=3)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    r = subprocess.run([str(CLI), "report", str(out)], cwd=elsewhere, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    data = embedded_data((out / "report.html").read_text())
+    assert not [m for m in data["missing"] if "ground truth" in m], data["missing"]
+    assert data["clouds"]["ground_truth"]["points"] == 500
+    assert data["clouds"]["ground_truth"]["source"] == str(tmp_path / "started_here/square.obj")
 
 
 @pytest.fixture(scope="module")
@@ -281,7 +361,9 @@ def test_sensing_pipelines_pictures_are_in_the_report_with_their_captions(sensin
     (image,) = embedded_data((sensing_dir / "report.html").read_text())["images"]
     assert (image["name"], image["mime"]) == (name, "image/png")
     assert image["caption"].startswith(caption), image["caption"]
-    assert image["caption"] == summary["notes"]["picture.caption"]
+    (record,) = [a for a in summary["artifacts"] if a["role"] == "image"]
+    assert (record["stage"], record["file"]) == ("picture", name)
+    assert image["caption"] == record["attributes"]["caption"]
     assert base64.b64decode(image["base64"]) == (sensing_dir / name).read_bytes()
 
 

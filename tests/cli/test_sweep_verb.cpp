@@ -184,3 +184,28 @@ TEST(SweepVerb, ResumeRefusesCorruptRowsAndReadsWindowsLineEnds) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("1 of them from before (--resume)"), std::string::npos) << r.out;
 }
+
+// Without --accuracy the plot takes the metric a stage declares with role
+// accuracy, whatever its name; an --accuracy no stage declares is refused
+// before anything runs.
+TEST(SweepVerb, PlotsTheMetricOfRoleAccuracyAndRefusesAnUndeclaredOne) {
+  touchcloud::test::TempDir dir;
+  write_file(dir / "p.yaml",
+             "stages:\n  - id: l\n    loop:\n      max_iterations: 2\n      stages:\n"
+             "        - id: s\n          plugin: test_declared_outputs\n"
+             "        - id: c\n          plugin: test_counter\n");
+  const std::string p = (dir / "p.yaml").string();
+  auto r = run_cli({"sweep", p, "--vary", "c.step=1,2", "--out", (dir / "sw").string()}, kTestPlugins);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") == 0) {
+    EXPECT_NE(r.out.find("plotted s.error_mm against wall_time_s"), std::string::npos) << r.out;
+  }
+  r = run_cli({"sweep", p, "--vary", "c.step=1,2", "--accuracy", "s.surprise", "--out", (dir / "sw2").string()},
+              kTestPlugins);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--accuracy s.surprise: no stage of the pipeline declares such a metric (s.error_mm, s.calls, "
+                       "c.value, "),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "sw2/runs")) << "nothing ran";
+}

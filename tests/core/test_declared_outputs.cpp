@@ -17,6 +17,7 @@ const std::string kPipeline =
     "stages:\n  - id: l\n    loop:\n      max_iterations: 3\n      stages:\n"
     "        - id: s\n          plugin: test_declared_outputs\n";
 
+// The RunError of a stage told to get `what` wrong, through one call and its finish.
 std::string misreport_error(const std::string& what) {
   test::TempDir dir;
   RunSettings settings;
@@ -25,6 +26,7 @@ std::string misreport_error(const std::string& what) {
   h.configure();
   try {
     h.process({}, {"value"});
+    h.finish();
   } catch (const RunError& e) {
     return e.what();
   }
@@ -37,6 +39,31 @@ TEST(DeclaredOutputs, AnUndeclaredMetricIsAnError) {
   EXPECT_NE(misreport_error("undeclared_metric").find("reported metric 'surprise', which it never declared"),
             std::string::npos)
       << misreport_error("undeclared_metric");
+}
+
+// A stage that declares no metric at all reports none either: nothing goes
+// into summary.json undescribed.
+TEST(DeclaredOutputs, AStageThatDeclaresNoMetricReportsNone) {
+  class Undeclared final : public Stage {
+    void declare_ports(PortSet&) override {}
+    void on_process(StageIO&, RunContext& ctx) override { ctx.metric("points", 3.0, "points"); }
+  };
+  Undeclared stage;
+  ParameterSet params;
+  PortSet ports;
+  stage.declare(params, ports);
+  RunRecord record;
+  RunContext ctx("u", 0, record);
+  stage.configure(ctx);
+  StageIO io(ports, {}, {});
+  try {
+    stage.process(io, ctx);
+    ADD_FAILURE() << "no RunError";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("reported metric 'points', which it never declared"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(record.metrics.empty());
 }
 
 TEST(DeclaredOutputs, AMetricInAnotherUnitThanDeclaredIsAnError) {
@@ -52,6 +79,24 @@ TEST(DeclaredOutputs, AnUndeclaredArtifactRoleIsAnError) {
 TEST(DeclaredOutputs, AnArtifactNamesAFileTheStageWrote) {
   EXPECT_NE(misreport_error("unwritten_file").find("'never_written.txt' as an artifact, but wrote no such file"),
             std::string::npos);
+}
+
+TEST(DeclaredOutputs, AFinalMetricFromProcessIsAnError) {
+  EXPECT_NE(misreport_error("final_from_process").find("reported final metric 'calls' from process()"),
+            std::string::npos)
+      << misreport_error("final_from_process");
+}
+
+TEST(DeclaredOutputs, AFinalMetricReportedTwiceIsAnError) {
+  EXPECT_NE(misreport_error("final_twice").find("reported final metric 'calls' twice"), std::string::npos)
+      << misreport_error("final_twice");
+}
+
+TEST(DeclaredOutputs, AFileWrittenWithoutARoleIsAnError) {
+  EXPECT_NE(misreport_error("file_without_role").find("the stage wrote 'points.txt' without recording its role"),
+            std::string::npos)
+      << misreport_error("file_without_role");
+  EXPECT_EQ(misreport_error("none"), "(no RunError)");
 }
 
 TEST(DeclaredOutputs, TheSchemaCarriesMetricsArtifactsAndTheCategory) {

@@ -1,4 +1,4 @@
-// The loss module's terms on tiny hand-checkable tensors (seed 000, Eq. 2-6).
+// The loss module's terms on tiny hand-checkable tensors (the GS-DepthNet paper, Eq. 2-6).
 #include <gtest/gtest.h>
 
 #include "touchcloud/learning/image_losses.hpp"

@@ -1,4 +1,4 @@
-// ContactNet and TactileDepthNet (seed 001): the layer tables against the
+// ContactNet and TactileDepthNet: the layer tables against the
 // networks, output shapes, a few training steps on a tiny seeded set, the
 // checkpoint round trip, the augmentation, and the refusals of other
 // networks and input sizes.

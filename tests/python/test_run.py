@@ -125,3 +125,29 @@ def test_dense_maps_and_colour_pairs_are_arrays(source):
     mask = r.outputs["mask.mask"]["contact_mask"]
     # One point per valid contact pixel, in mm.
     assert 0 < len(r.outputs["cloud.cloud"]) <= ((mask > 0) & (valid > 0)).sum()
+
+
+def test_metrics_carry_their_declarations_and_artifacts_their_roles(source, tmp_path):
+    r = touchcloud.run(str(source / "pipelines/fox_mask_active.yaml"), seed=1, out=str(tmp_path),
+                       set={"explore.max_iterations": 3, "surface.resolution": [40, 40]})
+    eq11 = r.metrics["score.chamfer_est_to_gt"]
+    assert (eq11["unit"], eq11["when"], eq11["direction"], eq11["role"]) == ("mm", "per_item", "lower_is_better",
+                                                                             "accuracy")
+    assert "Eq. 11" in eq11["doc"] and len(eq11["series"]) == 3
+    final = r.metrics["score.final_chamfer_mm"]
+    assert (final["when"], final["role"]) == ("final", None)
+    assert r.metrics["fit.update_path"]["direction"] is None
+    assert r.metrics["dedup.added_points"]["role"] == "points_added"
+    roles = {a["role"]: a for a in r.artifacts}
+    surface = roles["reconstructed_surface"]
+    assert (surface["stage"], surface["file"]) == ("write_surface", "fox_mask_active_surface.pcd")
+    assert surface["path"] == str(tmp_path / "fox_mask_active_surface.pcd")
+    assert len(touchcloud.read_cloud(surface["path"])) == surface["attributes"]["points"]
+    assert roles["touch_points"]["path"] == str(tmp_path / "fox_mask_active_touch_points.pcd")
+    truth = roles["ground_truth"]
+    assert truth["file"] is None and truth["path"] is None
+    assert truth["attributes"]["scene"] == str(source / "sample_clouds/fox_mask/scene.yaml")
+    assert (truth["attributes"]["kind"], truth["attributes"]["sample_seed"]) == ("mesh", 0)
+    # Without out, the files went with the scratch folder: no paths.
+    scratch = touchcloud.run(str(source / "pipelines/downsample_cloud.yaml"))
+    assert [(a["role"], a["path"]) for a in scratch.artifacts] == [("cloud", None)]

@@ -65,7 +65,9 @@ class Pipeline {
   // Every output ("stage.port") that some stage or a loop's `until` reads:
   // what a run computes anyway, so capturing it costs nothing extra.
   std::vector<std::string> wired_outputs() const;
-
+  // Every metric its stages declare ("stage.metric" and the declaration), in
+  // the stages' order: what a consumer may expect a run to report.
+  std::vector<std::pair<std::string, MetricSpec>> declared_metrics() const;
 
  private:
   friend RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options);

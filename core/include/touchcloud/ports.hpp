@@ -33,8 +33,8 @@ struct PortSpec {
 // A metric a stage reports into summary.json, declared beside its ports so
 // that `touchcloud plugins`, the report and sweeps know what it means.
 enum class MetricWhen {
-  per_item,  // reported by process(): one value per call, a series inside a loop
-  final,     // reported once, by finish()
+  per_item,  // one value per item (a process() call, or a press or view scored at the end): a series
+  final,     // one value per run, reported once by configure() or finish(), never by process()
 };
 enum class MetricDirection { none, lower_is_better, higher_is_better };
 // What a consumer (report, sweep, Python) may rely on a metric being.

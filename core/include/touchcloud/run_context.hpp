@@ -58,6 +58,9 @@ struct RunSettings {
       on_progress;
 };
 
+// The hooks of a stage (touchcloud/stage.hpp), as RunContext knows them.
+enum class StageHook { check, configure, process, finish };
+
 class RunContext {
  public:
   RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& record, RunSettings settings = {});
@@ -74,18 +77,25 @@ class RunContext {
   std::string with_iteration(std::string text) const;
   void set_iteration(int i) { iteration_ = i; }
 
-  // The stage's declarations: metric() and artifact() accept only what they
-  // declare. Stage's lifecycle calls bind them before each hook.
-  void bind_declarations(const PortSet* ports) { declared_ = ports; }
+  // The stage's declarations and the hook about to run: metric() and
+  // artifact() accept only what the stage declares, a final metric only
+  // outside process(). Stage's lifecycle calls bind them before each hook.
+  void bind_declarations(const PortSet* ports, StageHook hook) { declared_ = ports, hook_ = hook; }
 
   // A number for summary.json; finite, or RunError. Reported once per
   // iteration inside a loop, it becomes a series. `name` must be declared
-  // (PortSet::metric), and `unit`, when given, must be the declared one.
+  // (PortSet::metric), and `unit`, when given, must be the declared one; a
+  // final metric is reported once, and not by process().
   void metric(const std::string& name, double value, const std::string& unit = "");
-  // Records that `file` (a name given to output_path, or empty for a record
-  // without a file) has `role`, which the stage must declare
-  // (PortSet::artifact); `attributes` tell a consumer how to use it.
+  // Records that `file` (a name this stage gave output_path, or empty for a
+  // record without a file) has `role`, which the stage must declare
+  // (PortSet::artifact); `attributes` tell a consumer how to use it (a
+  // picture's caption, how ground truth was sampled). Every file a stage
+  // writes is recorded by the end of its finish(); recorded again, the last
+  // record holds.
   void artifact(ArtifactRole role, const std::string& file, std::map<std::string, ParamValue> attributes = {});
+  // The files this stage wrote and recorded no role for.
+  std::vector<std::string> files_without_role() const;
   void note(const std::string& name, const std::string& text);
   // The value used for `name` where the stage chose it: an optional
   // parameter left "not set" (summary.json shows this value in its place),
@@ -108,6 +118,8 @@ class RunContext {
   std::mt19937_64 rng_;
   int iteration_ = -1;
   const PortSet* declared_ = nullptr;
+  StageHook hook_ = StageHook::check;
+  std::map<std::string, bool> written_;  // files this stage wrote -> whether it recorded their role
 };
 
 }  // namespace touchcloud

@@ -1,4 +1,4 @@
-// Disparity to 3D (seed 000, Section III-E): the left disparity averaged with
+// Disparity to 3D (the GS-DepthNet paper, Section III-E): the left disparity averaged with
 // the right view's (Eq. 7), then each pixel to a point, either by the Q
 // matrix of the rectified pair (Eq. 8-9: straight rays, as the paper does) or
 // by tracing the pixel's two rays through the plate and intersecting them in

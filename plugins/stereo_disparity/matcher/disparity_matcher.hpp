@@ -1,4 +1,4 @@
-// Classical stereo matching of a rectified colour pair (seed 000's baselines):
+// Classical stereo matching of a rectified colour pair (the GS-DepthNet paper's baselines):
 // OpenCV's StereoBM (block matching, on grey) or StereoSGBM (semi-global,
 // on colour), for the left view and, by matching the mirrored pair, for the
 // right view; then a left-right consistency check. Pixels OpenCV leaves

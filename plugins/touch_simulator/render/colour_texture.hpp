@@ -1,4 +1,4 @@
-// The colour-pattern GelStereo's printed layer (seed 000, Section II): a
+// The colour-pattern GelStereo's printed layer (the GS-DepthNet paper, Section II): a
 // seeded random, dense colour pattern, semitransparent over the white gel.
 // Random colours on a grid of `feature_mm` cells, smoothed by a Gaussian of
 // a third of a cell so that the pattern is band-limited (sampling it at any

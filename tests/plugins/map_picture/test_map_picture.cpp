@@ -105,7 +105,11 @@ TEST(MapPicture, StageWritesThePictureWithItsCaption) {
   EXPECT_EQ(written.cols, 2 * 320 + 12 + 2 * 10);
   EXPECT_EQ(written.at<cv::Vec3b>(picture::map_pixel_in_picture({40, 30}, 1, 13, 2) + cv::Point(1, 1)),
             picture::scale_of(ramp("t"), "mm").colour(13));
-  EXPECT_EQ(stage.record().notes.at("picture.caption"),
+  // The picture is recorded as an image, its caption beside it.
+  ASSERT_EQ(stage.record().artifacts.size(), 1u);
+  EXPECT_EQ(stage.record().artifacts[0].role, ArtifactRole::image);
+  EXPECT_EQ(stage.record().artifacts[0].file, "height.png");
+  EXPECT_EQ(std::get<std::string>(stage.record().artifacts[0].attributes.at("caption")),
             "Height (mm) estimated (left) beside the ground truth (right), on one colour scale from 0 to 39 mm (the "
             "truth's range); grey: no value; white outline: the true contact region");
   EXPECT_EQ(stage.record().outputs, std::vector<std::string>{"height.png"});
@@ -139,7 +143,11 @@ TEST(MapPicture, StageDrawsTheLeftDisparityOnTheRangeGiven) {
     EXPECT_EQ(written.at<cv::Vec3b>(picture::map_pixel_in_picture(size, which, 15, 2) + cv::Point(1, 1)), scale.colour(15));
     EXPECT_EQ(written.at<cv::Vec3b>(picture::map_pixel_in_picture(size, which, 20, 10)), picture::kContactOutline);
   }
-  EXPECT_EQ(stage.record().notes.at("picture.caption"),
+  // The picture is recorded as an image, its caption beside it.
+  ASSERT_EQ(stage.record().artifacts.size(), 1u);
+  EXPECT_EQ(stage.record().artifacts[0].role, ArtifactRole::image);
+  EXPECT_EQ(stage.record().artifacts[0].file, "d_0.png");
+  EXPECT_EQ(std::get<std::string>(stage.record().artifacts[0].attributes.at("caption")),
             "Left disparity (px) estimated (left) beside the ground truth (right), on one colour scale from 10 to 20 "
             "px (colour_range); grey: no value; white outline: the true contact region");
   // A height map's truth for a disparity estimate is refused, naming the port to wire.

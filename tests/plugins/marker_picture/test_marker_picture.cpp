@@ -135,7 +135,11 @@ TEST(MarkerPicture, StageWritesThePictureWithItsCaption) {
   const cv::Mat written = cv::imread((dir / "pair.png").string(), cv::IMREAD_COLOR);
   ASSERT_EQ(written.size(), cv::Size(136, 92));
   EXPECT_EQ(written.at<cv::Vec3b>(40, 5), kGrey);
-  EXPECT_EQ(stage.record().notes.at("picture.caption"),
+  // The picture is recorded as an image, its caption beside it.
+  ASSERT_EQ(stage.record().artifacts.size(), 1u);
+  EXPECT_EQ(stage.record().artifacts[0].role, ArtifactRole::image);
+  EXPECT_EQ(stage.record().artifacts[0].file, "pair.png");
+  EXPECT_EQ(std::get<std::string>(stage.record().artifacts[0].attributes.at("caption")),
             "Left and right images of frame 41 with the markers detected (3 left, 2 right): green, matched (2 "
             "left-right matches, 2 of them joined by lines in colours of their own); red, without a match");
 }

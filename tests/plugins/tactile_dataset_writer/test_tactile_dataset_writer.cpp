@@ -1,4 +1,4 @@
-// tactile_dataset_writer writes seed 001's layout (images/ and depths/ per
+// tactile_dataset_writer writes the TactileDataset layout (images/ and depths/ per
 // split, 80/20) and tactile_dataset_reader reads the same samples back, bit
 // for bit.
 #include <gtest/gtest.h>

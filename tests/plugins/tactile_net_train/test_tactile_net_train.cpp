@@ -58,7 +58,7 @@ TEST_F(TrainTiny, ContactNetWritesCheckpointAndBothCurvesTheSameForTheSameSeedAn
   const std::string csv = read_file(path("a/contact_net.csv"));
   EXPECT_EQ(csv.rfind("epoch,learning_rate,seconds,loss,val_loss,val_iou\n", 0), 0u) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);  // header + 2 epochs
-  EXPECT_NE(csv.find("\n2,0.001,"), std::string::npos) << csv;  // the seed's constant rate
+  EXPECT_NE(csv.find("\n2,0.001,"), std::string::npos) << csv;  // the report's constant rate
   EXPECT_GT(fs::file_size(path("a/contact_net.png")), 1000u);
   EXPECT_NE(a.err.find("epoch 2/2"), std::string::npos) << a.err;
 

@@ -28,6 +28,8 @@ class SimSink final : public touchcloud::Stage {
     ports.optional_input<touchcloud::StereoFramePtr>("frame", "images");
     ports.optional_input<touchcloud::MarkerSetPtr>("markers", "marker pixels");
     ports.optional_input<touchcloud::SensorPose>("pose", "reported pose");
+    for (const char* name : {"frames", "image_hash", "marker_hash", "pose_hash", "last_matches", "last_mean_grey"})
+      ports.metric(name, "", "a fingerprint or count of what arrived").final();
   }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext&) override {
     if (const auto* f = io.optional_input<touchcloud::StereoFramePtr>("frame")) {

@@ -35,6 +35,10 @@ class CounterStage final : public touchcloud::Stage {
     ports.output<bool>("done", "count reached stop_at");
     ports.output<double>("record", "the value, as a simulator's costly image: made when read, or, when read only "
                                    "after the loop, on the call that ends it");
+    ports.metric("value", "", "previous + step");
+    for (const char* name : {"calls", "checks", "done_computed", "record_computed"})
+      ports.metric(name, "calls", "calls of a hook, or outputs computed").final();
+    ports.metric("random_draw", "", "a draw from the stage's generator at finish").final();
   }
   void on_process(touchcloud::StageIO& io, touchcloud::RunContext& ctx) override {
     const double* prev = io.optional_input<double>("previous");

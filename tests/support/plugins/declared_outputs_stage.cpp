@@ -8,7 +8,16 @@ namespace {
 using namespace touchcloud;
 
 class DeclaredOutputsStage final : public Stage {
-  enum class Misreport { none, undeclared_metric, wrong_unit, undeclared_role, unwritten_file };
+  enum class Misreport {
+    none,
+    undeclared_metric,
+    wrong_unit,
+    undeclared_role,
+    unwritten_file,
+    final_from_process,
+    final_twice,
+    file_without_role
+  };
   Misreport misreport_ = Misreport::none;
   std::string file_ = "points.txt";
 
@@ -18,8 +27,11 @@ class DeclaredOutputsStage final : public Stage {
            {"undeclared_metric", Misreport::undeclared_metric},
            {"wrong_unit", Misreport::wrong_unit},
            {"undeclared_role", Misreport::undeclared_role},
-           {"unwritten_file", Misreport::unwritten_file}})
-        .doc("what to get wrong on the first call");
+           {"unwritten_file", Misreport::unwritten_file},
+           {"final_from_process", Misreport::final_from_process},
+           {"final_twice", Misreport::final_twice},
+           {"file_without_role", Misreport::file_without_role}})
+        .doc("what to get wrong on the first call (the last three: at finish)");
     p.add("file", file_, std::string("points.txt")).output_file().doc("the table it writes at finish");
   }
   void declare_ports(PortSet& ports) override {
@@ -35,15 +47,18 @@ class DeclaredOutputsStage final : public Stage {
       case Misreport::wrong_unit: ctx.metric("error_mm", 1.0, "px"); break;
       case Misreport::undeclared_role: ctx.artifact(ArtifactRole::image, ""); break;
       case Misreport::unwritten_file: ctx.artifact(ArtifactRole::table, "never_written.txt"); break;
-      case Misreport::none: break;
+      case Misreport::final_from_process: ctx.metric("calls", calls_); break;
+      default: break;
     }
     ctx.metric("error_mm", 1.0 / calls_);
     io.output("value", static_cast<double>(calls_));
   }
   void on_finish(RunContext& ctx) override {
     ctx.metric("calls", calls_);
+    if (misreport_ == Misreport::final_twice) ctx.metric("calls", calls_);
     std::ofstream(ctx.output_path(file_)) << calls_ << "\n";
-    ctx.artifact(ArtifactRole::table, file_, {{"calls", std::int64_t{calls_}}});
+    if (misreport_ != Misreport::file_without_role)
+      ctx.artifact(ArtifactRole::table, file_, {{"calls", std::int64_t{calls_}}});
   }
   int calls_ = 0;
 };

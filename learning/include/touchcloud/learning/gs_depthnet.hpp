@@ -1,4 +1,4 @@
-// GS-DepthNet (seed 000, Section III): an encoder-decoder with skip
+// GS-DepthNet (the GS-DepthNet paper, Section III): an encoder-decoder with skip
 // connections that takes a rectified colour pair and outputs left and right
 // disparities at four scales (1/8, 1/4, 1/2 and 1 of the input, each double
 // the previous), each the gel's rest disparity (reference_disparity.hpp)

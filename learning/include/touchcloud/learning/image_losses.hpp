@@ -1,4 +1,4 @@
-// Differentiable image terms of self-supervised stereo (seed 000, Section
+// Differentiable image terms of self-supervised stereo (the GS-DepthNet paper, Section
 // III-C/D), on float tensors [B, C, H, W]. Disparities are in pixels of the
 // image they are applied to, [B, 1, H, W]. Includes torch: network code only.
 #pragma once

@@ -1,14 +1,14 @@
-// Seed 001's two networks for a monocular GelSight-type sensor: ContactNet
+// The ContactNet/TactileDepthNet report's two networks for a monocular GelSight-type sensor: ContactNet
 // (tactile image -> contact probability) and TactileDepthNet (tactile image
 // and that probability -> height map, mm), sized for a 2-core CPU. Includes
 // torch: network code only.
 //
-// Where the seed is vague, this is what was chosen, and why:
+// Where the report is vague, this is what was chosen, and why:
 //
 // - Input: the image minus the sensor's no-contact reference image, /255,
 //   then normalised per channel with the training set's mean and standard
 //   deviation (held in the module as buffers, so a checkpoint carries them).
-//   The seed "normalized the images"; subtracting the reference removes the
+//   The report "normalized the images"; subtracting the reference removes the
 //   gel's own shading and vignetting, which otherwise vary more across the
 //   pad than a shallow press changes it (the classical method takes the same
 //   reference).
@@ -17,7 +17,7 @@
 //   (3 x 3, stride 2) to 1/4 of the input, conv3 there, max pooling, conv4,
 //   max pooling, conv5 at 1/16; fc1 (dropout 0.5 after it) and fc2 give a
 //   coarse contact map of the whole image at 1/16 (the global view, as the
-//   coarse stack of the seed's reference [1], Eigen et al.), resized to 1/4
+//   coarse stack of the report's reference [1], Eigen et al.), resized to 1/4
 //   (bilinear) and concatenated with conv3's features; one transposed
 //   convolution (kernel 8, stride 4) brings that to the input size. ReLU
 //   between layers; the output's sigmoid is folded into the BCE loss
@@ -153,8 +153,8 @@ torch::Tensor contact_loss(const torch::Tensor& logits, const torch::Tensor& mas
 torch::Tensor depth_loss(const torch::Tensor& height_mm, const torch::Tensor& truth_mm);
 
 struct TactileAugmentation {
-  double max_rotation_deg = 5;    // the seed's +-5 degrees
-  double flip_probability = 0.5;  // left-right, the seed's 50 %
+  double max_rotation_deg = 5;    // the report's +-5 degrees
+  double flip_probability = 0.5;  // left-right, the report's 50 %
 };
 
 // The same random rotation and flip per sample of every tensor [B, C, H, W]

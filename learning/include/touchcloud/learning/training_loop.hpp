@@ -1,5 +1,5 @@
 // A network's training loop, whatever the network: the learning-rate
-// schedule (constant, then halved at a fixed period: seed 000's), shuffled
+// schedule (constant, then halved at a fixed period: the GS-DepthNet paper's), shuffled
 // batches from the stage's seeded generator, one record per epoch with the
 // loss terms and validation metrics, and the training curve (CSV + PNG).
 // Torch-free: the network's own code supplies one epoch as a function.

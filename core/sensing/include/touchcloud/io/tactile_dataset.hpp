@@ -1,5 +1,5 @@
 // The folder layout of a monocular tactile dataset (a GelSight-type sensor,
-// seed 001's TactileDataset): tactile images and their height maps in
+// the ContactNet/TactileDepthNet report's TactileDataset): tactile images and their height maps in
 // separate folders, split 80/20 into training and validation sets, simulated
 // or recorded alike.
 //

@@ -1,4 +1,4 @@
-// A monocular GelSight-type sensor (seed 001) as a `sensor:` section gives it,
+// A monocular GelSight-type sensor (the ContactNet/TactileDepthNet report's) as a `sensor:` section gives it,
 // with `family: gelsight`: a flat gel pad of some thickness on a clear plate,
 // lit by coloured LEDs from several sides and seen by one camera from behind.
 // GelSight Mini-like defaults: 240 x 320 px at 0.06 mm/px (a 14.4 x 19.2 mm

@@ -1,4 +1,4 @@
-// One colour image of a monocular GelSight-type sensor (seed 001): the gel
+// One colour image of a monocular GelSight-type sensor (the ContactNet/TactileDepthNet report's): the gel
 // seen from behind under its coloured LEDs. Needs OpenCV: only plugins that
 // handle images include this header (and link OpenCV themselves).
 #pragma once

@@ -27,6 +27,7 @@ void print_parameter(const ParamSpec& p) {
 
 void print_plugin(const LoadedPlugin& p, bool full) {
   std::cout << p.name() << " - " << p.description() << "\n";
+  if (full) std::cout << "  category: " << category_title(p.category()) << "\n";
   if (full) std::cout << "  library: " << p.library().string() << " (built for touchcloud " << p.toolkit_version() << ")\n";
   const auto& s = p.schema();
   if (!s.parameters.empty()) {
@@ -46,6 +47,20 @@ void print_plugin(const LoadedPlugin& p, bool full) {
   };
   ports("inputs", s.inputs);
   ports("outputs", s.outputs);
+  if (!s.metrics.empty()) {
+    std::cout << "  metrics:\n";
+    for (const auto& m : s.metrics) {
+      std::string traits = to_string(m.when);
+      if (m.direction != MetricDirection::none) traits += std::string(", ") + to_string(m.direction);
+      if (m.role != MetricRole::none) traits += std::string(", role ") + to_string(m.role);
+      std::cout << "    " << std::left << std::setw(22) << m.name << " " << std::setw(15)
+                << (m.unit.empty() ? "-" : m.unit) << " " << m.doc << " (" << traits << ")\n";
+    }
+  }
+  if (!s.artifacts.empty()) {
+    std::cout << "  writes:\n";
+    for (const auto& a : s.artifacts) std::cout << "    " << std::left << std::setw(22) << to_string(a.role) << " " << a.doc << "\n";
+  }
 }
 
 }  // namespace
@@ -71,14 +86,28 @@ Action* add_plugins_verb(CLI::App& app) {
       }
       nlohmann::json all = nlohmann::json::array();
       int failed = 0;
+      std::vector<const LoadedPlugin*> loaded;
       for (const auto& name : registry.available()) {
         try {
-          const LoadedPlugin& p = registry.load(name);
-          if (o.json) all.push_back(plugin_json(p));
-          else print_plugin(p, false), std::cout << "\n";
+          loaded.push_back(&registry.load(name));
         } catch (const InputError& e) {
           ++failed;
           std::cerr << "touchcloud: error: " << e.what() << "\n";
+        }
+      }
+      // Grouped by category, in the order of PluginCategory; by name within.
+      for (const PluginCategory category : kPluginCategories) {
+        bool headed = false;
+        for (const LoadedPlugin* p : loaded) {
+          if (p->category() != category) continue;
+          if (o.json) {
+            all.push_back(plugin_json(*p));
+            continue;
+          }
+          if (!headed) std::cout << "== " << category_title(category) << " ==\n\n";
+          headed = true;
+          print_plugin(*p, false);
+          std::cout << "\n";
         }
       }
       if (o.json) std::cout << all.dump(2) << "\n";

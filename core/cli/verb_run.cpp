@@ -75,7 +75,7 @@ Action* add_run_verb(CLI::App& app) {
       for (const auto& [name, series] : r.record.metrics)
         std::cout << "  " << std::left << std::setw(static_cast<int>(width)) << name << std::defaultfloat
                   << std::setprecision(6)
-                  << series.values.back() << (series.unit.empty() ? "" : " " + series.unit) << "\n";
+                  << series.values.back() << (series.spec.unit.empty() ? "" : " " + series.spec.unit) << "\n";
       std::cout << "wrote " << r.record.outputs.size() + 1 << " files to " << options.out_dir.string()
                 << " (summary.json";
       for (const auto& f : r.record.outputs) std::cout << ", " << f;

@@ -26,17 +26,34 @@ nlohmann::json port_json(const PortSpec& p) {
   return j;
 }
 
+nlohmann::json metric_json(const MetricSpec& m) {
+  nlohmann::json j = {{"name", m.name},
+                      {"unit", m.unit},
+                      {"doc", m.doc},
+                      {"when", to_string(m.when)},
+                      {"direction", to_string(m.direction)}};
+  if (m.role != MetricRole::none) j["role"] = to_string(m.role);
+  return j;
+}
+
 }  // namespace
 
 nlohmann::json plugin_json(const LoadedPlugin& p) {
-  nlohmann::json j = {{"name", p.name()},   {"description", p.description()},
-                      {"library", p.library().string()}, {"built_for", p.toolkit_version()}};
+  nlohmann::json j = {{"name", p.name()},
+                      {"category", to_string(p.category())},
+                      {"description", p.description()},
+                      {"library", p.library().string()},
+                      {"built_for", p.toolkit_version()}};
   j["parameters"] = nlohmann::json::array();
   for (const auto& s : p.schema().parameters) j["parameters"].push_back(param_json(s));
   j["inputs"] = nlohmann::json::array();
   for (const auto& s : p.schema().inputs) j["inputs"].push_back(port_json(s));
   j["outputs"] = nlohmann::json::array();
   for (const auto& s : p.schema().outputs) j["outputs"].push_back(port_json(s));
+  j["metrics"] = nlohmann::json::array();
+  for (const auto& s : p.schema().metrics) j["metrics"].push_back(metric_json(s));
+  j["artifacts"] = nlohmann::json::array();
+  for (const auto& s : p.schema().artifacts) j["artifacts"].push_back({{"role", to_string(s.role)}, {"doc", s.doc}});
   return j;
 }
 

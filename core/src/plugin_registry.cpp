@@ -59,6 +59,29 @@ std::string folder_list(const std::vector<fs::path>& folders) {
 
 std::string plugin_file_name(const std::string& name) { return kPrefix + name + kSuffix; }
 
+const char* to_string(PluginCategory category) {
+  switch (category) {
+    case PluginCategory::source: return "source";
+    case PluginCategory::simulation: return "simulation";
+    case PluginCategory::image_to_markers: return "image_to_markers";
+    case PluginCategory::geometry: return "geometry";
+    case PluginCategory::dense_depth: return "dense_depth";
+    case PluginCategory::reconstruction: return "reconstruction";
+    case PluginCategory::planning: return "planning";
+    case PluginCategory::scoring: return "scoring";
+    case PluginCategory::calibration: return "calibration";
+    case PluginCategory::writer: return "writer";
+    case PluginCategory::learning: return "learning";
+  }
+  return "";
+}
+
+std::string category_title(PluginCategory category) {
+  std::string title = to_string(category);
+  std::replace(title.begin(), title.end(), '_', ' ');
+  return title;
+}
+
 std::unique_ptr<Stage> LoadedPlugin::create() const {
   std::unique_ptr<Stage> stage(descriptor_->create());
   if (!stage) throw InputError("plugin '" + name_ + "' (" + library_.string() + "): create() returned no stage");
@@ -88,6 +111,9 @@ std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const
                      std::to_string(kPluginAbiVersion) + "; rebuild the plugin against this toolkit");
   if (!d->name) throw InputError(who + ": its descriptor has no name (NULL)");
   if (!d->create) throw InputError(who + ": its descriptor has no create() function (NULL)");
+  if (!*to_string(d->category))
+    throw InputError(who + ": its descriptor's category (" + std::to_string(static_cast<int>(d->category)) +
+                     ") is none of touchcloud's; build it with TOUCHCLOUD_PLUGIN and a PluginCategory");
   if (expected_name != d->name)
     throw InputError("plugin library " + library.string() + " calls itself '" + d->name + "', not '" +
                      expected_name + "'; its file name must be " + plugin_file_name(d->name));
@@ -97,6 +123,7 @@ std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const
   plugin->descriptor_ = d;
   plugin->name_ = d->name;
   plugin->description_ = d->description ? d->description : "";
+  plugin->category_ = d->category;
   plugin->toolkit_version_ = d->toolkit_version ? d->toolkit_version : "";
   plugin->library_ = library;
   // The schema is what a fresh instance declares.
@@ -110,7 +137,7 @@ std::unique_ptr<LoadedPlugin> load_plugin_library(const fs::path& library, const
   } catch (const std::exception& e) {
     throw InputError(who + ": a new stage failed to declare its parameters and ports: " + e.what());
   }
-  plugin->schema_ = {params.specs(), ports.inputs(), ports.outputs()};
+  plugin->schema_ = {params.specs(), ports.inputs(), ports.outputs(), ports.metrics(), ports.artifacts()};
   return plugin;
 }
 

@@ -41,10 +41,44 @@ RunContext::RunContext(std::string stage_id, std::uint64_t run_seed, RunRecord& 
 void RunContext::metric(const std::string& name, double value, const std::string& unit) {
   if (!std::isfinite(value))
     throw RunError("metric '" + name + "' is not finite (" + number_text(value) + ")");
+  MetricSpec spec{name, unit, ""};
+  if (declared_) {
+    const MetricSpec* declared = declared_->find_metric(name);
+    // Until every plugin declares its metrics, a stage that declares none
+    // reports as before.
+    if (!declared && !declared_->metrics().empty())
+      throw RunError("the stage reported metric '" + name + "', which it never declared (PortSet::metric)");
+    if (declared && !unit.empty() && unit != declared->unit)
+      throw RunError("the stage reported metric '" + name + "' in '" + unit + "', but declared it in '" +
+                     declared->unit + "'");
+    if (declared) spec = *declared;
+  }
   std::lock_guard<std::mutex> lock(record_mutex);
   auto& series = record_.metrics[stage_id_ + "." + name];
-  series.unit = unit;
+  series.spec = std::move(spec);
   series.values.push_back(value);
+}
+
+void RunContext::artifact(ArtifactRole role, const std::string& file, std::map<std::string, ParamValue> attributes) {
+  if (declared_ && !declared_->find_artifact(role))
+    throw RunError(std::string("the stage recorded an artifact of role '") + to_string(role) +
+                   "', which it never declared (PortSet::artifact)");
+  std::string name;
+  if (!file.empty()) {
+    name = std::filesystem::path(file).lexically_normal().string();
+    std::lock_guard<std::mutex> lock(record_mutex);
+    bool known = false;
+    for (const auto& o : record_.outputs) known = known || o == name;
+    if (!known)
+      throw RunError("the stage recorded '" + file + "' as an artifact, but wrote no such file (RunContext::output_path)");
+  }
+  std::lock_guard<std::mutex> lock(record_mutex);
+  for (auto& a : record_.artifacts)
+    if (!name.empty() && a.file == name) {
+      a = {stage_id_, role, name, std::move(attributes)};  // written again: the last record holds
+      return;
+    }
+  record_.artifacts.push_back({stage_id_, role, name, std::move(attributes)});
 }
 
 void RunContext::note(const std::string& name, const std::string& text) {

@@ -67,13 +67,27 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
 
   nlohmann::json metrics = nlohmann::json::object();
   for (const auto& [name, series] : result.record.metrics) {
-    nlohmann::json m = {{"value", series.values.back()}, {"unit", series.unit}};
+    const MetricSpec& spec = series.spec;
+    nlohmann::json m = {{"value", series.values.back()}, {"unit", spec.unit}};
     if (series.values.size() > 1) m["series"] = series.values;
+    if (!spec.doc.empty()) m["doc"] = spec.doc;
+    m["when"] = to_string(spec.when);
+    if (spec.direction != MetricDirection::none) m["direction"] = to_string(spec.direction);
+    if (spec.role != MetricRole::none) m["role"] = to_string(spec.role);
     metrics[name] = m;
   }
   j["metrics"] = metrics;
   j["notes"] = result.record.notes;
   j["outputs"] = result.record.outputs;
+  nlohmann::json artifacts = nlohmann::json::array();
+  for (const auto& a : result.record.artifacts) {
+    nlohmann::json attributes = nlohmann::json::object();
+    for (const auto& [key, value] : a.attributes) attributes[key] = to_json(value);
+    nlohmann::json entry = {{"stage", a.stage}, {"role", to_string(a.role)}, {"attributes", attributes}};
+    entry["file"] = a.file.empty() ? nlohmann::json() : nlohmann::json(a.file);
+    artifacts.push_back(entry);
+  }
+  j["artifacts"] = artifacts;
   return j;
 }
 

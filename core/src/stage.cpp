@@ -13,6 +13,7 @@ void Stage::declare(ParameterSet& params, PortSet& ports) {
 }
 
 void Stage::check(RunContext& ctx) {
+  ctx.bind_declarations(ports_);
   if (params_)
     for (const auto& [name, why] : params_->broken_rules()) throw ParameterError(name, why);
   on_check(ctx);
@@ -21,12 +22,14 @@ void Stage::check(RunContext& ctx) {
 
 void Stage::configure(RunContext& ctx) {
   if (!checked_) check(ctx);
+  ctx.bind_declarations(ports_);
   on_configure(ctx);
   configured_ = true;
 }
 
 void Stage::process(StageIO& io, RunContext& ctx) {
   if (!configured_) throw std::logic_error("stage '" + ctx.stage_id() + "' processed before it was configured");
+  ctx.bind_declarations(ports_);
   on_process(io, ctx);
   if (!ports_) return;
   for (const auto& out : ports_->outputs())
@@ -36,6 +39,7 @@ void Stage::process(StageIO& io, RunContext& ctx) {
 
 void Stage::finish(RunContext& ctx) {
   if (!configured_) throw std::logic_error("stage '" + ctx.stage_id() + "' finished before it was configured");
+  ctx.bind_declarations(ports_);
   on_finish(ctx);
 }
 

@@ -34,4 +34,4 @@ class ContactDisc final : public touchcloud::Stage {
 
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(ContactDisc, "contact_disc", "Keeps the points within a disc around the gel axis")
+TOUCHCLOUD_PLUGIN(ContactDisc, "contact_disc", geometry, "Keeps the points within a disc around the gel axis")

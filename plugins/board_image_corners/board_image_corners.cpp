@@ -93,5 +93,5 @@ class BoardImageCorners final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::BoardImageCorners, "board_image_corners",
+TOUCHCLOUD_PLUGIN(touchcloud::BoardImageCorners, "board_image_corners", calibration,
                   "Finds checkerboard corners (OpenCV, sub-pixel) in left/right calibration image files")

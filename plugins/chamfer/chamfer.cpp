@@ -154,5 +154,5 @@ class Chamfer final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::Chamfer, "chamfer",
+TOUCHCLOUD_PLUGIN(touchcloud::Chamfer, "chamfer", scoring,
                   "Scores an estimated cloud against ground truth (mesh or cloud): chamfer, Hausdorff, F-score")

@@ -115,5 +115,5 @@ class CheckerboardPress final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::CheckerboardPress, "checkerboard_press",
+TOUCHCLOUD_PLUGIN(touchcloud::CheckerboardPress, "checkerboard_press", simulation,
                   "Simulates checkerboard presses into the gel: corner pixels in both views, for calibration")

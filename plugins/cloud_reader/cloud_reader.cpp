@@ -46,4 +46,4 @@ class CloudReader final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::CloudReader, "cloud_reader", "Reads a point cloud from a PCD or PLY file")
+TOUCHCLOUD_PLUGIN(touchcloud::CloudReader, "cloud_reader", source, "Reads a point cloud from a PCD or PLY file")

@@ -36,4 +36,4 @@ class CloudWriter final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::CloudWriter, "cloud_writer", "Writes a point cloud to a PCD or PLY file in the output folder")
+TOUCHCLOUD_PLUGIN(touchcloud::CloudWriter, "cloud_writer", writer, "Writes a point cloud to a PCD or PLY file in the output folder")

@@ -79,5 +79,5 @@ class ContactMask final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::ContactMask, "contact_mask",
+TOUCHCLOUD_PLUGIN(touchcloud::ContactMask, "contact_mask", dense_depth,
                   "Contact region of a colour stereo pair from its difference to the no-contact reference pair")

@@ -41,4 +41,4 @@ class Dedup final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::Dedup, "dedup", "Accumulates touches, dropping points that overlap earlier ones (Eq. 7)")
+TOUCHCLOUD_PLUGIN(touchcloud::Dedup, "dedup", geometry, "Accumulates touches, dropping points that overlap earlier ones (Eq. 7)")

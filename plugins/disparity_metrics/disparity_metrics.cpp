@@ -91,5 +91,5 @@ class DisparityMetrics final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::DisparityMetrics, "disparity_metrics",
+TOUCHCLOUD_PLUGIN(touchcloud::DisparityMetrics, "disparity_metrics", scoring,
                   "Table I disparity errors (Abs Rel, Sq Rel, RMSE, RMSE log, delta) against ground truth")

@@ -192,6 +192,6 @@ class DisparityToCloud final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::DisparityToCloud, "disparity_to_cloud",
+TOUCHCLOUD_PLUGIN(touchcloud::DisparityToCloud, "disparity_to_cloud", geometry,
                   "Dense tactile cloud from left/right disparity maps: Eq. 7 averaging, then Q reprojection or "
                   "refractive ray tracing")

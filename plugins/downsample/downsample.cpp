@@ -77,4 +77,4 @@ class Downsample final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::Downsample, "downsample", "Thins a point cloud on a voxel grid or by random sampling")
+TOUCHCLOUD_PLUGIN(touchcloud::Downsample, "downsample", geometry, "Thins a point cloud on a voxel grid or by random sampling")

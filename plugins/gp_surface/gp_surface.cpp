@@ -110,4 +110,4 @@ class GpSurface final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::GpSurface, "gp_surface", "Fits a Gaussian-process surface z = f(x, y) to the touches")
+TOUCHCLOUD_PLUGIN(touchcloud::GpSurface, "gp_surface", reconstruction, "Fits a Gaussian-process surface z = f(x, y) to the touches")

@@ -97,5 +97,5 @@ class GsDepthNetStage final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::GsDepthNetStage, "gs_depthnet",
+TOUCHCLOUD_PLUGIN(touchcloud::GsDepthNetStage, "gs_depthnet", learning,
                   "Left and right disparity maps of a rectified colour pair by a trained GS-DepthNet")

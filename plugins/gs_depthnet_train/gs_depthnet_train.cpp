@@ -384,6 +384,6 @@ class GsDepthNetTrain final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::GsDepthNetTrain, "gs_depthnet_train",
+TOUCHCLOUD_PLUGIN(touchcloud::GsDepthNetTrain, "gs_depthnet_train", learning,
                   "Trains GS-DepthNet (self-supervised stereo disparity) on a dataset folder; writes a checkpoint "
                   "and the training curve")

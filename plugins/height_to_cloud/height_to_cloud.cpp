@@ -114,5 +114,5 @@ class HeightToCloud final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::HeightToCloud, "height_to_cloud",
+TOUCHCLOUD_PLUGIN(touchcloud::HeightToCloud, "height_to_cloud", geometry,
                   "Height map of a GelSight-type sensor to a tactile cloud (sensor frame) and base-frame points")

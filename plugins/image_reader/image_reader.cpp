@@ -58,5 +58,5 @@ class ImageReader final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::ImageReader, "image_reader",
+TOUCHCLOUD_PLUGIN(touchcloud::ImageReader, "image_reader", source,
                   "Reads one camera's image file (a single-camera sensor, or one camera of a stereo pair)")

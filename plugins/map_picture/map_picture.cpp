@@ -80,6 +80,6 @@ class MapPicture final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::MapPicture, "map_picture",
+TOUCHCLOUD_PLUGIN(touchcloud::MapPicture, "map_picture", writer,
                   "Picture of an estimated disparity or height map beside its ground truth, one colour scale and a "
                   "legend (PNG/JPEG)")

@@ -106,5 +106,5 @@ class MarkerDetection final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::MarkerDetection, "marker_detection",
+TOUCHCLOUD_PLUGIN(touchcloud::MarkerDetection, "marker_detection", image_to_markers,
                   "Finds marker dots with sub-pixel centres in both images of a stereo frame, or in one camera's image")

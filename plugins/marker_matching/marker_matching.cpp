@@ -77,5 +77,5 @@ class MarkerMatching final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::MarkerMatching, "marker_matching",
+TOUCHCLOUD_PLUGIN(touchcloud::MarkerMatching, "marker_matching", image_to_markers,
                   "Pairs left/right markers through the sensor model and tracks their ids from the reference frame")

@@ -57,5 +57,5 @@ class MarkerPicture final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::MarkerPicture, "marker_picture",
+TOUCHCLOUD_PLUGIN(touchcloud::MarkerPicture, "marker_picture", writer,
                   "Picture of a stereo pair with its detected markers and their left-right matches (PNG/JPEG)")

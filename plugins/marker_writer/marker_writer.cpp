@@ -49,5 +49,5 @@ class MarkerWriter final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::MarkerWriter, "marker_writer",
+TOUCHCLOUD_PLUGIN(touchcloud::MarkerWriter, "marker_writer", writer,
                   "Writes a marker set (id, view, x, y, quality) to a CSV or JSON file in the output folder")

@@ -106,6 +106,6 @@ class NextTouch final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::NextTouch, "next_touch",
+TOUCHCLOUD_PLUGIN(touchcloud::NextTouch, "next_touch", planning,
                   "Chooses the next touch: greatest surface variance (Eq. 10), greatest expected variance reduction "
                   "of a press, or random")

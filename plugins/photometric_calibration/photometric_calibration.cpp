@@ -113,5 +113,5 @@ class PhotometricCalibrationStage final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::PhotometricCalibrationStage, "photometric_calibration",
+TOUCHCLOUD_PLUGIN(touchcloud::PhotometricCalibrationStage, "photometric_calibration", calibration,
                   "Photometric calibration of a GelSight-type sensor from ball presses: colour difference to gradient")

@@ -114,5 +114,5 @@ class PhotometricDepth final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::PhotometricDepth, "photometric_depth",
+TOUCHCLOUD_PLUGIN(touchcloud::PhotometricDepth, "photometric_depth", dense_depth,
                   "Height map and contact mask of a GelSight-type image: calibrated gradients, FFTW Poisson integration")

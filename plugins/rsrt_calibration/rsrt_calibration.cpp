@@ -190,5 +190,5 @@ class RsrtCalibration final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::RsrtCalibration, "rsrt_calibration",
+TOUCHCLOUD_PLUGIN(touchcloud::RsrtCalibration, "rsrt_calibration", calibration,
                   "Calibrates the plate (d_xy, normal, mu_silicone) from checkerboard presses; writes a sensor file")

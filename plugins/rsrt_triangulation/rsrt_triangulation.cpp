@@ -62,5 +62,5 @@ class RsrtTriangulation final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::RsrtTriangulation, "rsrt_triangulation",
+TOUCHCLOUD_PLUGIN(touchcloud::RsrtTriangulation, "rsrt_triangulation", geometry,
                   "Marker positions from matched pixel pairs by refractive stereo ray tracing (RSRT)")

@@ -43,4 +43,4 @@ class Saliency final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::Saliency, "saliency", "Keeps the markers of the contact patch (adaptive threshold, Eq. 4)")
+TOUCHCLOUD_PLUGIN(touchcloud::Saliency, "saliency", geometry, "Keeps the markers of the contact patch (adaptive threshold, Eq. 4)")

@@ -73,5 +73,5 @@ class StableContact final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StableContact, "stable_contact",
+TOUCHCLOUD_PLUGIN(touchcloud::StableContact, "stable_contact", geometry,
                   "Stable contact from marker displacements (GelStereo Palm 2.0, Eq. 2-3)")

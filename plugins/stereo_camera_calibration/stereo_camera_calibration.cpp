@@ -75,5 +75,5 @@ class StereoCameraCalibration final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StereoCameraCalibration, "stereo_camera_calibration",
+TOUCHCLOUD_PLUGIN(touchcloud::StereoCameraCalibration, "stereo_camera_calibration", calibration,
                   "Calibrates both cameras and their relative pose from board corners in air (Zhang, OpenCV)")

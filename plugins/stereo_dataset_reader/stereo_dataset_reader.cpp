@@ -124,5 +124,5 @@ class StereoDatasetReader final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StereoDatasetReader, "stereo_dataset_reader",
+TOUCHCLOUD_PLUGIN(touchcloud::StereoDatasetReader, "stereo_dataset_reader", source,
                   "Reads rectified colour pairs, and their ground truth where listed, from a dataset folder")

@@ -84,5 +84,5 @@ class StereoDatasetWriter final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StereoDatasetWriter, "stereo_dataset_writer",
+TOUCHCLOUD_PLUGIN(touchcloud::StereoDatasetWriter, "stereo_dataset_writer", writer,
                   "Writes rectified colour pairs and their ground truth into a dataset folder (PNG, float TIFF, index.csv)")

@@ -97,6 +97,6 @@ class StereoDisparity final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StereoDisparity, "stereo_disparity",
+TOUCHCLOUD_PLUGIN(touchcloud::StereoDisparity, "stereo_disparity", dense_depth,
                   "Dense left and right disparity maps of a rectified colour pair (OpenCV StereoBM or StereoSGBM), "
                   "left-right checked")

@@ -77,5 +77,5 @@ class StereoImageReader final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StereoImageReader, "stereo_image_reader",
+TOUCHCLOUD_PLUGIN(touchcloud::StereoImageReader, "stereo_image_reader", source,
                   "Reads a left and a right image file into a stereo frame")

@@ -167,5 +167,5 @@ class StereoRectification final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::StereoRectification, "stereo_rectification",
+TOUCHCLOUD_PLUGIN(touchcloud::StereoRectification, "stereo_rectification", dense_depth,
                   "Rectifies a recorded stereo pair with the sensor's stereo calibration (stereoRectify + remap)")

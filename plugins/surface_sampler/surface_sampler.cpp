@@ -192,4 +192,4 @@ class SurfaceSampler final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::SurfaceSampler, "surface_sampler", "Samples a fitted surface's mean on a lattice over the workspace")
+TOUCHCLOUD_PLUGIN(touchcloud::SurfaceSampler, "surface_sampler", reconstruction, "Samples a fitted surface's mean on a lattice over the workspace")

@@ -98,5 +98,5 @@ class TactileDatasetReader final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::TactileDatasetReader, "tactile_dataset_reader",
+TOUCHCLOUD_PLUGIN(touchcloud::TactileDatasetReader, "tactile_dataset_reader", source,
                   "Reads GelSight-type images with height maps and contact masks from a dataset folder (train/validation)")

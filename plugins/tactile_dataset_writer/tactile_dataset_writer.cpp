@@ -89,5 +89,5 @@ class TactileDatasetWriter final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::TactileDatasetWriter, "tactile_dataset_writer",
+TOUCHCLOUD_PLUGIN(touchcloud::TactileDatasetWriter, "tactile_dataset_writer", writer,
                   "Writes GelSight-type images with height maps and contact masks into a dataset folder (80/20 split)")

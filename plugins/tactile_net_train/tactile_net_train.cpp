@@ -293,6 +293,6 @@ class TactileNetTrain final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::TactileNetTrain, "tactile_net_train",
+TOUCHCLOUD_PLUGIN(touchcloud::TactileNetTrain, "tactile_net_train", learning,
                   "Trains ContactNet or TactileDepthNet (seed 001) on a tactile dataset folder; writes a checkpoint "
                   "and the train/validation loss curve")

@@ -114,5 +114,5 @@ class TactileNets final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::TactileNets, "tactile_nets",
+TOUCHCLOUD_PLUGIN(touchcloud::TactileNets, "tactile_nets", learning,
                   "Height map and contact mask of a GelSight-type image by ContactNet and TactileDepthNet (seed 001)")

@@ -311,6 +311,6 @@ class TouchSimulator final : public Stage {
 
 }  // namespace touchcloud
 
-TOUCHCLOUD_PLUGIN(touchcloud::TouchSimulator, "touch_simulator",
+TOUCHCLOUD_PLUGIN(touchcloud::TouchSimulator, "touch_simulator", simulation,
                   "Simulates the GelStereo Palm 2.0 (or a GelSight-type sensor) touching an object: truth, pixels or "
                   "images, per frame")

@@ -84,7 +84,7 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
   Result result;
   for (const auto& [name, series] : r.record.metrics)
     result.metrics[py::str(name)] =
-        py::dict(py::arg("value") = series.values.back(), py::arg("unit") = series.unit, py::arg("series") = series.values);
+        py::dict(py::arg("value") = series.values.back(), py::arg("unit") = series.spec.unit, py::arg("series") = series.values);
   for (const auto& [key, value] : r.captured) {
     try {
       result.outputs[py::str(key)] = to_python(key, value);

@@ -36,3 +36,9 @@ TEST(PluginDescriptors, DataSymbolAsEntryPointIsRefused) {
   EXPECT_NE(msg.find("touchcloud_test_data_entry.so"), std::string::npos) << msg;
   EXPECT_NE(msg.find("as data, not as the function"), std::string::npos) << msg;
 }
+
+TEST(PluginDescriptors, CategoryOutsideTheEnumIsRefused) {
+  const std::string msg = load_error("test_unknown_category");
+  EXPECT_NE(msg.find("touchcloud_test_unknown_category.so"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("category (99) is none of touchcloud's"), std::string::npos) << msg;
+}

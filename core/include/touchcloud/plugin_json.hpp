@@ -8,8 +8,8 @@
 
 namespace touchcloud {
 
-// Name, description, library, parameters (type, default, unit, rule, range,
-// choices), inputs and outputs.
+// Name, category, description, library, parameters (type, default, unit,
+// rule, range, choices), inputs, outputs, metrics and artifact roles.
 nlohmann::json plugin_json(const LoadedPlugin& plugin);
 
 }  // namespace touchcloud

@@ -20,6 +20,8 @@ namespace touchcloud {
 struct PluginSchema {
   std::vector<ParamSpec> parameters;
   std::vector<PortSpec> inputs, outputs;
+  std::vector<MetricSpec> metrics;
+  std::vector<ArtifactSpec> artifacts;
 };
 
 class LoadedPlugin;
@@ -32,6 +34,7 @@ class LoadedPlugin {
  public:
   const std::string& name() const { return name_; }
   const std::string& description() const { return description_; }
+  PluginCategory category() const { return category_; }
   const std::string& toolkit_version() const { return toolkit_version_; }
   const std::filesystem::path& library() const { return library_; }
   const PluginSchema& schema() const { return schema_; }
@@ -42,6 +45,7 @@ class LoadedPlugin {
   std::shared_ptr<void> library_handle_;  // keeps the .so mapped
   const PluginDescriptor* descriptor_ = nullptr;
   std::string name_, description_, toolkit_version_;
+  PluginCategory category_ = PluginCategory::geometry;
   std::filesystem::path library_;
   PluginSchema schema_;
 };

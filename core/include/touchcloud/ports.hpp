@@ -15,18 +15,10 @@
 #include <typeinfo>
 #include <vector>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/error.hpp"
 
 namespace touchcloud {
-
-template <class T>
-struct DataTypeName;  // specialised by TOUCHCLOUD_DATA_TYPE
-
-#define TOUCHCLOUD_DATA_TYPE(CXX_TYPE, NAME)                  \
-  template <>                                                 \
-  struct touchcloud::DataTypeName<CXX_TYPE> {                 \
-    static constexpr std::string_view value = NAME;           \
-  }
 
 struct PortSpec {
   std::string name;
@@ -37,6 +29,70 @@ struct PortSpec {
   // wires exactly one (empty: none).
   std::string one_of;
 };
+
+// A metric a stage reports into summary.json, declared beside its ports so
+// that `touchcloud plugins`, the report and sweeps know what it means.
+enum class MetricWhen {
+  per_item,  // reported by process(): one value per call, a series inside a loop
+  final,     // reported once, by finish()
+};
+enum class MetricDirection { none, lower_is_better, higher_is_better };
+// What a consumer (report, sweep, Python) may rely on a metric being.
+enum class MetricRole {
+  none,
+  accuracy,      // error of a reconstruction against ground truth (the headline of a run)
+  points_added,  // per touch: points the touch added to the reconstruction
+  touch_x_mm,    // per touch: where the touch was aimed, base frame
+  touch_y_mm,
+};
+
+struct MetricSpec {
+  std::string name;
+  std::string unit;  // empty when dimensionless
+  std::string doc;
+  MetricWhen when = MetricWhen::per_item;
+  MetricDirection direction = MetricDirection::none;
+  MetricRole role = MetricRole::none;
+};
+
+class MetricBuilder {
+ public:
+  explicit MetricBuilder(MetricSpec& spec) : spec_(spec) {}
+  MetricBuilder& final() { return spec_.when = MetricWhen::final, *this; }
+  MetricBuilder& lower_is_better() { return spec_.direction = MetricDirection::lower_is_better, *this; }
+  MetricBuilder& higher_is_better() { return spec_.direction = MetricDirection::higher_is_better, *this; }
+  MetricBuilder& role(MetricRole r) { return spec_.role = r, *this; }
+
+ private:
+  MetricSpec& spec_;
+};
+
+// What a file a stage writes (or a thing it records, such as how its ground
+// truth was sampled) is, so that consumers read roles, never file names.
+enum class ArtifactRole {
+  reconstructed_surface,  // the reconstruction, as a cloud or mesh
+  touch_points,           // the points the touches gave
+  ground_truth,           // what a score was computed against, and how it was sampled
+  cloud,                  // any other point cloud
+  mesh,
+  image,                  // a picture for people (PNG/JPEG)
+  map,                    // a dense map: depth, height or disparity, contact mask
+  markers,                // marker centres
+  calibration,            // a sensor or calibration file
+  checkpoint,             // network weights
+  dataset,                // a dataset folder's files
+  table,                  // CSV or JSON figures, curves
+};
+
+struct ArtifactSpec {
+  ArtifactRole role = ArtifactRole::cloud;
+  std::string doc;
+};
+
+const char* to_string(MetricWhen when);
+const char* to_string(MetricDirection direction);
+const char* to_string(MetricRole role);
+const char* to_string(ArtifactRole role);
 
 class PortSet {
  public:
@@ -59,13 +115,25 @@ class PortSet {
   void output(std::string name, std::string doc) {
     outputs_.push_back({std::move(name), std::string(DataTypeName<T>::value), std::move(doc), false, {}});
   }
+  // A metric RunContext::metric may report: name, unit, one-line doc; then
+  // .final(), .lower_is_better() / .higher_is_better(), .role(...).
+  MetricBuilder metric(std::string name, std::string unit, std::string doc);
+  // A role of the files (or records) RunContext::artifact may add.
+  void artifact(ArtifactRole role, std::string doc);
+
   const std::vector<PortSpec>& inputs() const { return inputs_; }
   const std::vector<PortSpec>& outputs() const { return outputs_; }
+  const std::vector<MetricSpec>& metrics() const { return metrics_; }
+  const std::vector<ArtifactSpec>& artifacts() const { return artifacts_; }
   const PortSpec* find_input(std::string_view name) const;
   const PortSpec* find_output(std::string_view name) const;
+  const MetricSpec* find_metric(std::string_view name) const;
+  const ArtifactSpec* find_artifact(ArtifactRole role) const;
 
  private:
   std::vector<PortSpec> inputs_, outputs_;
+  std::vector<MetricSpec> metrics_;
+  std::vector<ArtifactSpec> artifacts_;
 };
 
 // What one call of a stage's process hook reads and writes.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "touchcloud/parameters.hpp"
+#include "touchcloud/ports.hpp"
 
 namespace touchcloud {
 
@@ -19,8 +20,18 @@ namespace touchcloud {
 inline constexpr const char* kIterationField = "{iteration}";
 
 struct MetricSeries {
-  std::string unit;
+  MetricSpec spec;             // as the stage declared it (name without the stage id)
   std::vector<double> values;  // one per report; in a loop, one per iteration
+};
+
+// A file a stage wrote, or a thing it recorded without a file (how its
+// ground truth was sampled), with its role and what a consumer needs to use
+// it (a scene file's absolute path, a sample count, a seed).
+struct ArtifactRecord {
+  std::string stage;
+  ArtifactRole role = ArtifactRole::cloud;
+  std::string file;  // relative to the output folder; empty when no file was written
+  std::map<std::string, ParamValue> attributes;
 };
 
 // Everything a run records, shared by the contexts of all its stages.
@@ -28,6 +39,7 @@ struct RunRecord {
   std::map<std::string, MetricSeries> metrics;  // key: "stage.metric"
   std::map<std::string, std::string> notes;     // key: "stage.note"
   std::vector<std::string> outputs;             // file names in the output folder
+  std::vector<ArtifactRecord> artifacts;        // in the order stages added them
   // What a stage used where its parameters left the choice to it ("not
   // set": the scene's value; a build's backend): stage id -> name -> value.
   std::map<std::string, std::map<std::string, ParamValue>> used;
@@ -62,9 +74,18 @@ class RunContext {
   std::string with_iteration(std::string text) const;
   void set_iteration(int i) { iteration_ = i; }
 
+  // The stage's declarations: metric() and artifact() accept only what they
+  // declare. Stage's lifecycle calls bind them before each hook.
+  void bind_declarations(const PortSet* ports) { declared_ = ports; }
+
   // A number for summary.json; finite, or RunError. Reported once per
-  // iteration inside a loop, it becomes a series.
+  // iteration inside a loop, it becomes a series. `name` must be declared
+  // (PortSet::metric), and `unit`, when given, must be the declared one.
   void metric(const std::string& name, double value, const std::string& unit = "");
+  // Records that `file` (a name given to output_path, or empty for a record
+  // without a file) has `role`, which the stage must declare
+  // (PortSet::artifact); `attributes` tell a consumer how to use it.
+  void artifact(ArtifactRole role, const std::string& file, std::map<std::string, ParamValue> attributes = {});
   void note(const std::string& name, const std::string& text);
   // The value used for `name` where the stage chose it: an optional
   // parameter left "not set" (summary.json shows this value in its place),
@@ -86,6 +107,7 @@ class RunContext {
   RunSettings settings_;
   std::mt19937_64 rng_;
   int iteration_ = -1;
+  const PortSet* declared_ = nullptr;
 };
 
 }  // namespace touchcloud

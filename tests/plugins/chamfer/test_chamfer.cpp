@@ -49,21 +49,21 @@ class Chamfer : public touchcloud::test::PipelineFixture {
 TEST_F(Chamfer, HandCheckedMetricsOfACloud) {
   const RunResult r = run(pipeline("{ground_truth: gt.pcd}"));
   EXPECT_EQ(series(r, "score.chamfer_est_to_gt").values, std::vector<double>{1.5});
-  EXPECT_EQ(series(r, "score.chamfer_est_to_gt").unit, "mm");
+  EXPECT_EQ(series(r, "score.chamfer_est_to_gt").spec.unit, "mm");
   EXPECT_DOUBLE_EQ(series(r, "score.chamfer_gt_to_est").values.at(0), (3 + std::sqrt(104.0)) / 3);
   EXPECT_DOUBLE_EQ(series(r, "score.chamfer_symmetric").values.at(0), 0.5 * (1.5 + (3 + std::sqrt(104.0)) / 3));
   EXPECT_DOUBLE_EQ(series(r, "score.hausdorff").values.at(0), std::sqrt(104.0));
   EXPECT_DOUBLE_EQ(series(r, "score.fscore").values.at(0), 0.4);
   EXPECT_DOUBLE_EQ(series(r, "score.precision").values.at(0), 0.5);
   EXPECT_DOUBLE_EQ(series(r, "score.recall").values.at(0), 1.0 / 3);
-  EXPECT_EQ(series(r, "score.fscore").unit, "");
+  EXPECT_EQ(series(r, "score.fscore").spec.unit, "");
   EXPECT_EQ(r.record.metrics.count("score.fscore_threshold"), 0u) << "a parameter, not a result";
   EXPECT_DOUBLE_EQ(series(r, "score.p95_est_to_gt").values.at(0), 2.0);
   // The last item's local errors beside the final chamfer.
   EXPECT_DOUBLE_EQ(series(r, "score.final_p95_mm").values.at(0), 2.0);
   EXPECT_DOUBLE_EQ(series(r, "score.final_hausdorff_mm").values.at(0), std::sqrt(104.0));
   EXPECT_DOUBLE_EQ(series(r, "score.final_fscore").values.at(0), 0.4);
-  EXPECT_EQ(series(r, "score.final_hausdorff_mm").unit, "mm");
+  EXPECT_EQ(series(r, "score.final_hausdorff_mm").spec.unit, "mm");
 }
 
 TEST_F(Chamfer, ThresholdAndMetricSelection) {

@@ -64,4 +64,4 @@ class SimSink final : public touchcloud::Stage {
 
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(SimSink, "test_sim_sink", "Test only: fingerprints simulator outputs")
+TOUCHCLOUD_PLUGIN(SimSink, "test_sim_sink", writer, "Test only: fingerprints simulator outputs")

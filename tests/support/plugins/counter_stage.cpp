@@ -65,4 +65,4 @@ class CounterStage final : public touchcloud::Stage {
 };
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(CounterStage, "test_counter", "Test only: counts its calls")
+TOUCHCLOUD_PLUGIN(CounterStage, "test_counter", source, "Test only: counts its calls")

@@ -10,7 +10,7 @@ class NullNameStage final : public touchcloud::Stage {
 
 extern "C" BOOST_SYMBOL_EXPORT const touchcloud::PluginDescriptor* touchcloud_plugin_descriptor() {
   static const touchcloud::PluginDescriptor descriptor{
-      TOUCHCLOUD_PLUGIN_ABI_VERSION, TOUCHCLOUD_VERSION_STRING, nullptr, "Test only: no name",
+      TOUCHCLOUD_PLUGIN_ABI_VERSION, TOUCHCLOUD_VERSION_STRING, nullptr, touchcloud::PluginCategory::geometry, "Test only: no name",
       []() -> touchcloud::Stage* { return new NullNameStage(); }};
   return &descriptor;
 }

@@ -11,4 +11,4 @@ class OldStage final : public touchcloud::Stage {
 };
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(OldStage, "test_old_abi", "Test only: built for another ABI")
+TOUCHCLOUD_PLUGIN(OldStage, "test_old_abi", geometry, "Test only: built for another ABI")

@@ -38,4 +38,4 @@ class PatchSource final : public touchcloud::Stage {
 
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(PatchSource, "test_patch_source", "Test only: touch patches of an analytic surface")
+TOUCHCLOUD_PLUGIN(PatchSource, "test_patch_source", source, "Test only: touch patches of an analytic surface")

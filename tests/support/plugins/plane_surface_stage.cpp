@@ -61,4 +61,4 @@ class PlaneSurfaceStage final : public touchcloud::Stage {
 
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(PlaneSurfaceStage, "test_plane_surface", "Test only: an analytic plane with known variance")
+TOUCHCLOUD_PLUGIN(PlaneSurfaceStage, "test_plane_surface", reconstruction, "Test only: an analytic plane with known variance")

@@ -45,4 +45,4 @@ class RendezvousStage final : public touchcloud::Stage {
 
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(RendezvousStage, "test_rendezvous", "Test only: a stage that waits for the calls of another")
+TOUCHCLOUD_PLUGIN(RendezvousStage, "test_rendezvous", geometry, "Test only: a stage that waits for the calls of another")

@@ -38,4 +38,4 @@ class ThrowingStage final : public touchcloud::Stage {
 };
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(ThrowingStage, "test_throwing", "Test only: throws on a chosen call")
+TOUCHCLOUD_PLUGIN(ThrowingStage, "test_throwing", geometry, "Test only: throws on a chosen call")

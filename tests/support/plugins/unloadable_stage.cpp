@@ -10,4 +10,4 @@ class UnloadableStage final : public touchcloud::Stage {
 };
 }  // namespace
 
-TOUCHCLOUD_PLUGIN(UnloadableStage, "test_unloadable", "Test only: cannot be loaded")
+TOUCHCLOUD_PLUGIN(UnloadableStage, "test_unloadable", geometry, "Test only: cannot be loaded")

@@ -56,12 +56,12 @@
 
 #include "touchcloud/gp/exact_gp.hpp"
 #include "touchcloud/gp/factor_algebra.hpp"
+#include "touchcloud/gp/gp_surface_model.hpp"
 #include "touchcloud/gp/hyperparameter_search.hpp"
 #include "touchcloud/gp/kernel.hpp"
 #include "touchcloud/gp/matern_sums.hpp"
 #include "touchcloud/gp/marginal_likelihood.hpp"
 #include "touchcloud/gp/vector_exp.hpp"
-#include "touchcloud/gp/gp_surface_model.hpp"
 #include "footprint_choice.hpp"
 #include "touch_choice.hpp"
 #include "touchcloud/blas_environment.hpp"
@@ -301,8 +301,7 @@ void BM_LatticeMeanSums(benchmark::State& state) {
     qx.segment(i * side, side).setConstant(xs[i]);
     qy.segment(i * side, side) = xs;
   }
-  const gp::Kernel kernel(state.range(0) == 0 ? gp::KernelKind::rbf : gp::KernelKind::matern52,
-                                  kFoxMask);
+  const gp::Kernel kernel(state.range(0) == 0 ? gp::KernelKind::rbf : gp::KernelKind::matern52, kFoxMask);
   const Eigen::Index half = qx.size() / 2;
   if (state.range(0) == 3 && !gp::simd_path_runs_here(gp::SimdPath::avx2_fma)) {
     state.SkipWithError("the fused AVX2 path does not run here");
@@ -318,7 +317,7 @@ void BM_LatticeMeanSums(benchmark::State& state) {
     const auto queries = [&](Eigen::Index first, Eigen::Index last) {
       if (state.range(0) == 3) {  // the fused sums' AVX2 path, as on a CPU without AVX-512
         gp::matern52_unit_sums(px.data(), py.data(), w.data(), px.size(), qx.data(), qy.data(), first, last, c,
-                                       out.data(), gp::SimdPath::avx2_fma);
+                               out.data(), gp::SimdPath::avx2_fma);
         return;
       }
       Eigen::MatrixXd column(kTrainingPoints, 1);

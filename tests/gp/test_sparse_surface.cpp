@@ -4,13 +4,13 @@
 
 #include <Eigen/Dense>
 
-#include "touchcloud/gp/exact_gp.hpp"
-#include "touchcloud/gp/inducing_points.hpp"
-#include "touchcloud/gp/sparse_vfe.hpp"
 #include "gp_fixtures.hpp"
-#include "touchcloud/gp/gp_surface_model.hpp"
-#include "touchcloud/gp/sparse_surface_model.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/gp/exact_gp.hpp"
+#include "touchcloud/gp/gp_surface_model.hpp"
+#include "touchcloud/gp/inducing_points.hpp"
+#include "touchcloud/gp/sparse_surface_model.hpp"
+#include "touchcloud/gp/sparse_vfe.hpp"
 
 using namespace touchcloud::gp;
 

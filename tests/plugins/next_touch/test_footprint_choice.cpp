@@ -10,11 +10,11 @@
 #include <limits>
 
 #include "footprint_choice.hpp"
-#include "touchcloud/gp/exact_gp.hpp"
-#include "touchcloud/gp/gp_surface_model.hpp"
 #include "space_filling.hpp"
 #include "touch_choice.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/gp/exact_gp.hpp"
+#include "touchcloud/gp/gp_surface_model.hpp"
 
 using namespace touchcloud;
 using namespace touchcloud::next_touch;

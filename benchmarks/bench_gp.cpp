@@ -54,14 +54,14 @@
 
 #include <pcl/io/pcd_io.h>
 
-#include "gp/exact_gp.hpp"
-#include "gp/factor_algebra.hpp"
-#include "gp/hyperparameter_search.hpp"
-#include "gp/kernel.hpp"
-#include "gp/matern_sums.hpp"
-#include "gp/marginal_likelihood.hpp"
-#include "gp/vector_exp.hpp"
-#include "gp_surface_model.hpp"
+#include "touchcloud/gp/exact_gp.hpp"
+#include "touchcloud/gp/factor_algebra.hpp"
+#include "touchcloud/gp/gp_surface_model.hpp"
+#include "touchcloud/gp/hyperparameter_search.hpp"
+#include "touchcloud/gp/kernel.hpp"
+#include "touchcloud/gp/matern_sums.hpp"
+#include "touchcloud/gp/marginal_likelihood.hpp"
+#include "touchcloud/gp/vector_exp.hpp"
 #include "footprint_choice.hpp"
 #include "touch_choice.hpp"
 #include "touchcloud/blas_environment.hpp"
@@ -69,7 +69,7 @@
 namespace {
 
 using namespace touchcloud;
-using namespace touchcloud::gp_surface;
+using namespace touchcloud::gp;
 using namespace touchcloud::next_touch;
 
 constexpr Eigen::Index kTrainingPoints = 2000;
@@ -180,14 +180,14 @@ std::vector<Samples> touches() {
 
 // Hyperparameters as selected for the fox mask at this size (fixed, so that
 // the update benchmark does not depend on the optimiser).
-const gp_surface::Hyperparameters kFoxMask{40.0, 9.0, 0.003};
+const gp::Hyperparameters kFoxMask{40.0, 9.0, 0.003};
 
 void BM_TouchUpdateAndChoice(benchmark::State& state) {
-  gp_surface::ExactGpOptions options;
+  gp::ExactGpOptions options;
   if (state.range(0) == 0) options.max_cached_candidates = 0;
   const Samples& s = samples();
   const std::vector<Samples> batch = touches();
-  auto base = std::make_shared<gp_surface::ExactGp>(gp_surface::KernelKind::rbf, kFoxMask, options);
+  auto base = std::make_shared<gp::ExactGp>(gp::KernelKind::rbf, kFoxMask, options);
   // Touches take n from 2,000 - 4 x 60 to 2,000 + 4 x 60: 2,000 on average.
   const Eigen::Index n0 = kTrainingPoints - kTouches * kTouchPoints / 2;
   base->fit(s.xy.topRows(n0), s.z.head(n0));
@@ -204,23 +204,23 @@ void BM_TouchUpdateAndChoice(benchmark::State& state) {
   const Eigen::VectorXd grid_xs = Eigen::VectorXd::LinSpaced(200, grid.x_mm[0], grid.x_mm[1]);
   const Eigen::VectorXd grid_ys = Eigen::VectorXd::LinSpaced(200, grid.y_mm[0], grid.y_mm[1]);
 
-  std::shared_ptr<const gp_surface::ExactGp> current;
+  std::shared_ptr<const gp::ExactGp> current;
   int touch = kTouches;
   double paths = 0;
   for (auto _ : state) {
     if (touch == kTouches) {  // back to n = 2,000 on a store of its own
       state.PauseTiming();
-      auto fresh = std::make_shared<gp_surface::ExactGp>(*base);
+      auto fresh = std::make_shared<gp::ExactGp>(*base);
       fresh->reserve(fresh->capacity() + 1);
       current = fresh;
       touch = 0;
       state.ResumeTiming();
     }
     // As the gp_surface stage does: the previous snapshot stays unchanged.
-    auto next = std::make_shared<gp_surface::ExactGp>(*current);
-    const gp_surface::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
+    auto next = std::make_shared<gp::ExactGp>(*current);
+    const gp::UpdateReport report = next->add_points(batch[static_cast<std::size_t>(touch)].xy,
                                                      batch[static_cast<std::size_t>(touch)].z);
-    paths += report.path == gp_surface::UpdatePath::bordered ? 1 : 0;
+    paths += report.path == gp::UpdatePath::bordered ? 1 : 0;
     if (state.range(0) == 3) {
       benchmark::DoNotOptimize(footprint_variance_reduction_cell(GpSurfaceModel(next, std::nullopt), grid, {}).cell);
     } else {
@@ -238,14 +238,14 @@ BENCHMARK(BM_TouchUpdateAndChoice)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchma
 void BM_NextTouchChoice(benchmark::State& state) {
   const Samples& s = samples();
   const std::vector<Samples> batch = touches();
-  auto base = std::make_shared<gp_surface::ExactGp>(gp_surface::KernelKind::rbf, kFoxMask);
+  auto base = std::make_shared<gp::ExactGp>(gp::KernelKind::rbf, kFoxMask);
   const Eigen::Index n0 = kTrainingPoints - kTouchPoints;  // 2,000 after the touch
   base->fit(s.xy.topRows(n0), s.z.head(n0));
   base->reserve(kTrainingPoints + kTouchPoints);
   const WorkspaceGrid grid = fox_mask_grid();
   // The previous touch's choice fills the candidate cache (and, for the
   // footprint strategy, the candidates' V^T V).
-  auto choose_before = [&](const std::shared_ptr<const gp_surface::ExactGp>& gp) {
+  auto choose_before = [&](const std::shared_ptr<const gp::ExactGp>& gp) {
     if (state.range(0) == 1)
       footprint_variance_reduction_cell(GpSurfaceModel(gp, std::nullopt), grid, {});
     else
@@ -255,16 +255,16 @@ void BM_NextTouchChoice(benchmark::State& state) {
   const bool after_touch = state.range(1) == 1;
   for (auto _ : state) {
     state.PauseTiming();
-    std::shared_ptr<gp_surface::ExactGp> next = base;
+    std::shared_ptr<gp::ExactGp> next = base;
     if (after_touch) {
       // As in the active loop: the previous touch's model, on a store of its
       // own with its candidate cache filled, then the touch added in place
       // (a copy of `base` would find the rows above n0 written by the last
       // iteration's touch, move to a new store and start with no cache).
-      auto previous = std::make_shared<gp_surface::ExactGp>(*base);
+      auto previous = std::make_shared<gp::ExactGp>(*base);
       previous->reserve(previous->capacity() + 1);
       choose_before(previous);
-      next = std::make_shared<gp_surface::ExactGp>(*previous);
+      next = std::make_shared<gp::ExactGp>(*previous);
       next->add_points(batch[0].xy, batch[0].z);
     }
     const GpSurfaceModel model(next, std::nullopt);
@@ -282,7 +282,7 @@ BENCHMARK(BM_NextTouchChoice)->ArgsProduct({{0, 1}, {1, 0}})->Unit(benchmark::kM
 // The GP mean over the surface_sampler's 200 x 200 lattice at n = 2,000, as
 // Kernel::weighted_sums computes it for a kernel with no separable form: /0
 // the RBF kernel, /1 Matern 5/2 (one fused pass per query where the CPU has
-// AVX2 and FMA, gp/matern_sums.hpp; AVX-512 where there is), /2 Matern 5/2
+// AVX2 and FMA, touchcloud/gp/matern_sums.hpp; AVX-512 where there is), /2 Matern 5/2
 // through kernel columns (fill_cross per query, then a dot product: the path
 // without SLEEF or AVX2), /3 the fused sums on AVX2 even where AVX-512 runs.
 // All on two threads, half the lattice each.
@@ -301,10 +301,9 @@ void BM_LatticeMeanSums(benchmark::State& state) {
     qx.segment(i * side, side).setConstant(xs[i]);
     qy.segment(i * side, side) = xs;
   }
-  const gp_surface::Kernel kernel(state.range(0) == 0 ? gp_surface::KernelKind::rbf : gp_surface::KernelKind::matern52,
-                                  kFoxMask);
+  const gp::Kernel kernel(state.range(0) == 0 ? gp::KernelKind::rbf : gp::KernelKind::matern52, kFoxMask);
   const Eigen::Index half = qx.size() / 2;
-  if (state.range(0) == 3 && !gp_surface::simd_path_runs_here(gp_surface::SimdPath::avx2_fma)) {
+  if (state.range(0) == 3 && !gp::simd_path_runs_here(gp::SimdPath::avx2_fma)) {
     state.SkipWithError("the fused AVX2 path does not run here");
     return;
   }
@@ -317,8 +316,8 @@ void BM_LatticeMeanSums(benchmark::State& state) {
     const double c = 5.0 / (kFoxMask.lengthscale_mm * kFoxMask.lengthscale_mm);
     const auto queries = [&](Eigen::Index first, Eigen::Index last) {
       if (state.range(0) == 3) {  // the fused sums' AVX2 path, as on a CPU without AVX-512
-        gp_surface::matern52_unit_sums(px.data(), py.data(), w.data(), px.size(), qx.data(), qy.data(), first, last, c,
-                                       out.data(), gp_surface::SimdPath::avx2_fma);
+        gp::matern52_unit_sums(px.data(), py.data(), w.data(), px.size(), qx.data(), qy.data(), first, last, c,
+                               out.data(), gp::SimdPath::avx2_fma);
         return;
       }
       Eigen::MatrixXd column(kTrainingPoints, 1);
@@ -338,20 +337,20 @@ BENCHMARK(BM_LatticeMeanSums)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::k
 
 void BM_ModelSelection(benchmark::State& state) {
   const Samples data = selection_data();
-  gp_surface::SearchOptions options;
+  gp::SearchOptions options;
   if (state.range(0) == 0) {  // benchmarks/peers/gp_sklearn.py's start: var(z), 10 mm, var(z) / 100
     const double var_z = (data.z.array() - data.z.mean()).square().mean();
     options.start_hyperparameters = {{var_z, 10.0, var_z / 100.0}};
   }
   if (state.range(0) == 2) {  // as between touches: the optimum and curvature on 90 % of the points
     const Eigen::Index earlier = data.xy.rows() * 9 / 10;
-    const gp_surface::SearchResult previous = gp_surface::select_hyperparameters(data.xy.topRows(earlier), data.z.head(earlier));
+    const gp::SearchResult previous = gp::select_hyperparameters(data.xy.topRows(earlier), data.z.head(earlier));
     options.start_hyperparameters = {previous.hyperparameters};
     options.start_hessian_per_point = previous.hessian_per_point;
   }
-  gp_surface::SearchResult r;
+  gp::SearchResult r;
   for (auto _ : state) {
-    r = gp_surface::select_hyperparameters(data.xy, data.z, options);
+    r = gp::select_hyperparameters(data.xy, data.z, options);
     benchmark::DoNotOptimize(r.lml);
   }
   state.counters["n"] = static_cast<double>(data.xy.rows());
@@ -383,14 +382,14 @@ int write_data(const std::string& dir) {
 }
 
 int print_lml(const std::string& spec) {
-  gp_surface::Hyperparameters h;
+  gp::Hyperparameters h;
   if (std::sscanf(spec.c_str(), "%lf,%lf,%lf", &h.signal_variance_mm2, &h.lengthscale_mm, &h.noise_variance_mm2) != 3) {
     std::cerr << "bench_gp: --lml-at wants S2,L,NOISE (mm^2, mm, mm^2), got " << spec << "\n";
     return 2;
   }
   const Samples data = selection_data();
-  gp_surface::MarginalLikelihood lml(gp_surface::KernelKind::rbf, data.xy, data.z);
-  const gp_surface::LmlEvaluation e = lml.evaluate(h, false);
+  gp::MarginalLikelihood lml(gp::KernelKind::rbf, data.xy, data.z);
+  const gp::LmlEvaluation e = lml.evaluate(h, false);
   std::printf("{\"lml\": %.17g, \"jitter_mm2\": %.17g, \"n\": %ld}\n", e.lml, e.factorisation.jitter_mm2,
               static_cast<long>(data.xy.rows()));
   return 0;
@@ -426,8 +425,8 @@ int main(int argc, char** argv) {
     std::cerr << "bench_gp: " << e.what() << "\n";
     return 1;
   }
-  benchmark::AddCustomContext("gp_linear_algebra", gp_surface::factor_algebra_backend());
-  benchmark::AddCustomContext("gp_vector_exp", gp_surface::vector_exp_path());
+  benchmark::AddCustomContext("gp_linear_algebra", gp::factor_algebra_backend());
+  benchmark::AddCustomContext("gp_vector_exp", gp::vector_exp_path());
   if (const char* coretype = std::getenv("OPENBLAS_CORETYPE"))
     benchmark::AddCustomContext("openblas_coretype", coretype);
   int rest_argc = static_cast<int>(rest.size());

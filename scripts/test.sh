@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Quick start 2: builds if needed and runs every test (the GP's tests twice:
-# as built, and as test_gp_surface_fallback without OpenBLAS and SLEEF).
+# as built, and as test_gp_fallback without OpenBLAS and SLEEF).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh

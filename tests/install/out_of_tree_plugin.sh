@@ -2,6 +2,8 @@
 # Installs the toolkit into a temporary prefix, builds examples/custom_plugin
 # against it with find_package(touchcloud), loads the plugin through
 # TOUCHCLOUD_PLUGIN_PATH and runs it in a pipeline with the installed CLI.
+# Then builds and runs a program against the installed gp library
+# (touchcloud::gp, tests/install/gp_consumer).
 # Usage: out_of_tree_plugin.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
 src=$1 build=$2
@@ -29,3 +31,16 @@ fi
 # The installed CLI finds the installed built-in plugins (not the build tree's).
 "$tc" plugins --json | python3 -c "import json,sys; libs=[p['library'] for p in json.load(sys.stdin)]; assert all(l.startswith('$work/prefix') or l.startswith('$work/plugin') for l in libs), libs"
 echo "out-of-tree plugin: built, loaded and run; kept $kept points"
+
+cmake -S "$src/tests/install/gp_consumer" -B "$work/consumer" -G Ninja \
+      -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/consumer_configure.log"
+cmake --build "$work/consumer" > "$work/consumer_build.log"
+fitted=$("$work/consumer/fit_touches")
+# Three touches of 9 points: selections at 9, 18 (>= 13.5) and 27 (>= 27)
+# points; between its touches the mean of a plane is the plane (6.1 mm).
+python3 - "$fitted" <<'PY'
+import sys
+words = sys.argv[1].split()
+assert words[0] == "selections" and words[1] == "3" and abs(float(words[3]) - 6.1) < 0.01, sys.argv[1]
+PY
+echo "gp library: built against and run ($fitted)"

@@ -10,6 +10,7 @@
 #include "cloud_files.hpp"
 #include "pipeline_fixture.hpp"
 #include "stage_harness.hpp"
+#include "test_support.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/surface_model.hpp"
 
@@ -87,6 +88,15 @@ TEST_F(GpSurfaceStage, MinNoiseFloorsTheSelectedNoise) {
     EXPECT_NE(std::string(e.what()).find("min_noise_mm"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("max_noise_mm"), std::string::npos) << e.what();
   }
+}
+
+// The rules between the parameters are the fit options' own, checked with
+// the pipeline: validate refuses a noise floor above the cap, naming the
+// parameter, the value and the rule, before anything runs.
+TEST(GpSurfaceCheck, ValidateRefusesANoiseFloorAboveTheCap) {
+  const auto r = touchcloud::test::run_cli({"validate", "pipelines/fox_mask_active.yaml", "--set", "fit.min_noise_mm=2"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("parameter 'min_noise_mm': value 2 must be below max_noise_mm (1 mm)"), std::string::npos) << r.err;
 }
 
 TEST_F(GpSurfaceStage, SparseWithEveryPointInducingMatchesExact) {

@@ -10,11 +10,11 @@
 #include <limits>
 
 #include "footprint_choice.hpp"
-#include "gp/exact_gp.hpp"
-#include "gp_surface_model.hpp"
 #include "space_filling.hpp"
 #include "touch_choice.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/gp/exact_gp.hpp"
+#include "touchcloud/gp/gp_surface_model.hpp"
 
 using namespace touchcloud;
 using namespace touchcloud::next_touch;
@@ -30,7 +30,7 @@ WorkspaceGrid grid_8x8() {
   return g;
 }
 
-const gp_surface::Hyperparameters kFlat{1.0, 6.0, 1e-4};  // signal 1 mm^2, lengthscale 6 mm
+const gp::Hyperparameters kFlat{1.0, 6.0, 1e-4};  // signal 1 mm^2, lengthscale 6 mm
 
 // A flat object (z = 10 mm everywhere) touched on a 5 mm lattice, except
 //  - corner A: no point within 9.9 mm of the corner cell's centre (5, 5);
@@ -62,8 +62,8 @@ FlatScene flat_scene() {
   return s;
 }
 
-std::shared_ptr<gp_surface::ExactGp> fit(const Eigen::MatrixX2d& xy, const Eigen::VectorXd& z) {
-  auto gp = std::make_shared<gp_surface::ExactGp>(gp_surface::KernelKind::rbf, kFlat);
+std::shared_ptr<gp::ExactGp> fit(const Eigen::MatrixX2d& xy, const Eigen::VectorXd& z) {
+  auto gp = std::make_shared<gp::ExactGp>(gp::KernelKind::rbf, kFlat);
   gp->fit(xy, z);
   return gp;
 }
@@ -98,7 +98,7 @@ double mean_variance_after_press(const FlatScene& s, const WorkspaceGrid& g, int
 TEST(FootprintChoice, DiffersFromEq10AndLeavesLessVarianceThanAnyOtherPress) {
   const FlatScene s = flat_scene();
   const WorkspaceGrid g = grid_8x8();
-  const gp_surface::GpSurfaceModel model(fit(s.xy, s.z), std::nullopt);
+  const gp::GpSurfaceModel model(fit(s.xy, s.z), std::nullopt);
   const PressFootprint press;  // 65 mm gel, 5.5 mm past first contact
 
   const VarianceChoice eq10 = max_variance_cell(model, g, 1);

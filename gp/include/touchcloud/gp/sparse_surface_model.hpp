@@ -1,0 +1,30 @@
+// A sparse VFE GP (sparse_vfe.hpp) as the toolkit's SurfaceModel: an
+// immutable snapshot, like GpSurfaceModel.
+#pragma once
+
+#include <memory>
+
+#include "touchcloud/gp/sparse_vfe.hpp"
+#include "touchcloud/types/surface_model.hpp"
+
+namespace touchcloud::gp {
+
+class SparseSurfaceModel final : public SurfaceModel {
+ public:
+  // `data_z_range_mm`: [min, max] of the training z (nothing with no data).
+  SparseSurfaceModel(std::shared_ptr<const gp::SparseVfeGp> gp, std::optional<std::array<double, 2>> data_z_range_mm)
+      : gp_(std::move(gp)), data_z_range_mm_(data_z_range_mm) {}
+  std::size_t training_size() const override { return static_cast<std::size_t>(gp_->size()); }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return gp_->mean(xy); }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return gp_->variance(xy); }
+  std::optional<Eigen::MatrixXd> covariance(const Eigen::MatrixX2d& xy) const override { return gp_->covariance(xy); }
+  std::optional<double> noise_variance_mm2() const override { return gp_->hyperparameters().noise_variance_mm2; }
+  std::optional<std::array<double, 2>> data_z_range_mm() const override { return data_z_range_mm_; }
+  std::map<std::string, double> hyperparameters() const override;
+
+ private:
+  std::shared_ptr<const gp::SparseVfeGp> gp_;
+  std::optional<std::array<double, 2>> data_z_range_mm_;
+};
+
+}  // namespace touchcloud::gp

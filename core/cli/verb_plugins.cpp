@@ -95,15 +95,14 @@ Action* add_plugins_verb(CLI::App& app) {
           std::cerr << "touchcloud: error: " << e.what() << "\n";
         }
       }
-      // Grouped by category, in the order of PluginCategory; by name within.
+      // --json: by name, each with its category; the text: grouped by
+      // category, in the order of PluginCategory, by name within.
+      if (o.json)
+        for (const LoadedPlugin* p : loaded) all.push_back(plugin_json(*p));
       for (const PluginCategory category : kPluginCategories) {
         bool headed = false;
         for (const LoadedPlugin* p : loaded) {
-          if (p->category() != category) continue;
-          if (o.json) {
-            all.push_back(plugin_json(*p));
-            continue;
-          }
+          if (o.json || p->category() != category) continue;
           if (!headed) std::cout << "== " << category_title(category) << " ==\n\n";
           headed = true;
           print_plugin(*p, false);

@@ -31,7 +31,7 @@
 #include <memory>
 #include <set>
 
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 #include "touchcloud/plugin_registry.hpp"
 #include "touchcloud/run_context.hpp"
 #include "touchcloud/stage.hpp"
@@ -40,7 +40,7 @@
 #include "touchcloud/types/point_cloud.hpp"
 
 using namespace touchcloud;
-using touch_simulator::TouchSimulation;
+using simulation::GelStereoSimulation;
 
 namespace {
 
@@ -60,10 +60,10 @@ struct Press {
 
 // One press 1 mm deep of the pentagon, rendered at `size`.
 Press render(const Size& size) {
-  auto scene = touch_simulator::load_scene(kScene);
+  auto scene = simulation::load_scene(kScene);
   scene.sensor.colour_pattern.width_px = size.width;
   scene.sensor.colour_pattern.height_px = size.height;
-  TouchSimulation sim(scene, 1);
+  GelStereoSimulation sim(scene, 1);
   for (int i = 0; i < 400; ++i)
     if (sim.step({0, 0}, false).travel_past_contact_mm >= scene.robot.press_depth_mm - 1e-6) break;
   Press p;

@@ -40,7 +40,7 @@ namespace {
 
 struct Image {
   const cv::Mat* pixels;
-  const touch_simulator::ViewPixels* truth;
+  const simulation::ViewPixels* truth;
 };
 
 const std::vector<test::RenderedFrame>& frames() {

@@ -6,7 +6,7 @@
 //   build/benchmarks/bin/bench_photometric_depth
 #include <benchmark/benchmark.h>
 
-#include "gelsight_simulation.hpp"
+#include "touchcloud/simulation/gelsight_simulation.hpp"
 #include "gradients/photometric_depth_solver.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 
@@ -20,8 +20,8 @@ struct Press {
 
 const Press& ball_press() {
   static const Press press = [] {
-    touch_simulator::GelSightSimulation sim(
-        touch_simulator::load_scene(std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/scene.yaml"), 1);
+    simulation::GelSightSimulation sim(
+        simulation::load_scene(std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/scene.yaml"), 1);
     for (int i = 0; i < 100000; ++i)
       if (sim.step({0.4, -0.3}, false).travel_past_contact_mm >= 0.6) break;
     return Press{sim.render().image, sim.render_reference().image};

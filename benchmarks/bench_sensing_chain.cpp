@@ -16,20 +16,20 @@
 #include "detector/stereo_markers.hpp"
 #include "marker_triangulator.hpp"
 #include "stereo_tracker.hpp"
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 
 using namespace touchcloud;
 
 namespace {
 
-const touch_simulator::Scene& scene() {
-  static const touch_simulator::Scene s = [] {
-    touch_simulator::Scene scene =
-        touch_simulator::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
-    scene.effects = touch_simulator::EffectSet();
-    for (auto e : {touch_simulator::Effect::Contact, touch_simulator::Effect::Refraction, touch_simulator::Effect::Render, touch_simulator::Effect::PixelNoise,
-                   touch_simulator::Effect::Blur})
+const simulation::Scene& scene() {
+  static const simulation::Scene s = [] {
+    simulation::Scene scene =
+        simulation::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
+    scene.effects = simulation::EffectSet();
+    for (auto e : {simulation::Effect::Contact, simulation::Effect::Refraction, simulation::Effect::Render, simulation::Effect::PixelNoise,
+                   simulation::Effect::Blur})
       scene.effects.add(e);
     scene.effect_parameters.noise_sigma_grey = 2.0;
     scene.effect_parameters.blur_sigma_px = 0.9;
@@ -41,7 +41,7 @@ const touch_simulator::Scene& scene() {
 // Frames of one touch at (10, 5) mm, up to 4 mm past first contact.
 const std::vector<StereoFramePtr>& touch_frames() {
   static const std::vector<StereoFramePtr> frames = [] {
-    touch_simulator::TouchSimulation sim(scene(), 1);
+    simulation::GelStereoSimulation sim(scene(), 1);
     std::vector<StereoFramePtr> out;
     for (int i = 0; i < 200; ++i) {
       const auto& f = sim.step({10, 5}, false);

@@ -11,9 +11,9 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
 
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 
-using namespace touchcloud::touch_simulator;
+using namespace touchcloud::simulation;
 
 namespace {
 
@@ -28,8 +28,8 @@ Scene fox_scene(std::initializer_list<Effect> effects) {
 // stable 4 mm past first contact, so the press frame ends it.
 class TouchLoop {
  public:
-  explicit TouchLoop(TouchSimulation& sim) : sim_(sim) {}
-  const SimulatedFrame& next() {
+  explicit TouchLoop(GelStereoSimulation& sim) : sim_(sim) {}
+  const TouchFrame& next() {
     const auto& f = sim_.step(target_, stable_);
     stable_ = !f.touch.pressed && f.travel_past_contact_mm > 4.0;
     if (f.touch.pressed) target_ = sim_.scene().workspace.cell_centre_mm(++cell_ % sim_.scene().workspace.cells());
@@ -37,26 +37,29 @@ class TouchLoop {
   }
 
  private:
-  TouchSimulation& sim_;
+  GelStereoSimulation& sim_;
   int cell_ = 90;
   Eigen::Vector2d target_ = sim_.scene().workspace.cell_centre_mm(90);
   bool stable_ = false;
 };
 
-void report(benchmark::State& state, const TouchSimulation& sim) {
+void report(benchmark::State& state, const GelStereoSimulation& sim) {
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["markers"] = static_cast<double>(sim.markers().rest_mm.size());
 }
 
 void TruthOnly(benchmark::State& state) {
-  TouchSimulation sim(fox_scene({Effect::Contact, Effect::ElasticSpread}), 1);
+  GelStereoSimulation sim(fox_scene({Effect::Contact, Effect::ElasticSpread}), 1);
   TouchLoop touches(sim);
-  for (auto _ : state) benchmark::DoNotOptimize(touches.next().gel.markers_base_mm.data());
+  for (auto _ : state) {
+    touches.next();
+    benchmark::DoNotOptimize(sim.gel().markers_base_mm.data());
+  }
   report(state, sim);
 }
 
 void PixelsThroughPlate(benchmark::State& state) {
-  TouchSimulation sim(fox_scene({Effect::Contact, Effect::ElasticSpread, Effect::Refraction}), 1);
+  GelStereoSimulation sim(fox_scene({Effect::Contact, Effect::ElasticSpread, Effect::Refraction}), 1);
   TouchLoop touches(sim);
   double matches = 0;
   for (auto _ : state) {
@@ -70,7 +73,7 @@ void PixelsThroughPlate(benchmark::State& state) {
 }
 
 void StereoRender(benchmark::State& state, std::initializer_list<Effect> effects) {
-  TouchSimulation sim(fox_scene(effects), 1);
+  GelStereoSimulation sim(fox_scene(effects), 1);
   TouchLoop touches(sim);
   for (auto _ : state) {
     touches.next();
@@ -82,7 +85,7 @@ void StereoRender(benchmark::State& state, std::initializer_list<Effect> effects
 
 // Drawing alone: one stereo frame of the gel at rest, noise included.
 void RenderOnly(benchmark::State& state) {
-  TouchSimulation sim(fox_scene({Effect::Refraction, Effect::Render, Effect::PixelNoise}), 1);
+  GelStereoSimulation sim(fox_scene({Effect::Refraction, Effect::Render, Effect::PixelNoise}), 1);
   sim.step(sim.scene().workspace.cell_centre_mm(0), false);
   sim.views();  // projected once, outside the loop
   for (auto _ : state) {

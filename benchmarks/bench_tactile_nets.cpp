@@ -7,7 +7,7 @@
 //   build/benchmarks/bin/bench_tactile_nets --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
-#include "gelsight_simulation.hpp"
+#include "touchcloud/simulation/gelsight_simulation.hpp"
 #include "gradients/photometric_depth_solver.hpp"
 #include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/tactile_nets.hpp"
@@ -26,8 +26,8 @@ struct Press {
 // A press of the calibration ball (as bench_photometric_depth's).
 const Press& ball_press() {
   static const Press press = [] {
-    touch_simulator::GelSightSimulation sim(
-        touch_simulator::load_scene(std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/scene.yaml"), 1);
+    simulation::GelSightSimulation sim(
+        simulation::load_scene(std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/scene.yaml"), 1);
     for (int i = 0; i < 100000; ++i)
       if (sim.step({0.4, -0.3}, false).travel_past_contact_mm >= 0.6) break;
     return Press{sim.render().image, sim.render_reference().image};

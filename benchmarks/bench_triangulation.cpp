@@ -15,7 +15,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 #include "touchcloud/optics/stereo_triangulation.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 
@@ -32,16 +32,16 @@ struct PairData {
 const PairData& pairs() {
   static const PairData data = [] {
     PairData d;
-    touch_simulator::Scene scene =
-        touch_simulator::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
-    touch_simulator::TouchSimulation sim(scene, 1);
+    simulation::Scene scene =
+        simulation::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
+    simulation::GelStereoSimulation sim(scene, 1);
     for (int i = 0; i < 30; ++i) sim.step({10, 5}, false);  // pressed into the mask
     const MarkerSet set = sim.marker_set();
     const Eigen::Isometry3d left_from_sensor = sim.optics().left_from_sensor();
     for (const auto& m : set.matches) {
       d.left_px.push_back(set.left[m.left].centre_px);
       d.right_px.push_back(set.right[m.right].centre_px);
-      d.truth_left_mm.push_back(left_from_sensor * sim.frame().gel.markers_sensor_mm[m.id]);
+      d.truth_left_mm.push_back(left_from_sensor * sim.gel().markers_sensor_mm[m.id]);
     }
     d.rig = std::make_unique<optics::StereoRig>(sensor::make_stereo_rig(scene.sensor, true, false));
     return d;

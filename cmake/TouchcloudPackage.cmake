@@ -2,11 +2,12 @@
 # find_package(touchcloud).
 include(CMakePackageConfigHelpers)
 
-install(TARGETS touchcloud_core touchcloud_sensing touchcloud_cli EXPORT touchcloudTargets
+install(TARGETS touchcloud_core touchcloud_sensing touchcloud_simulation touchcloud_cli EXPORT touchcloudTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY core/include/touchcloud core/sensing/include/touchcloud DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY core/include/touchcloud core/sensing/include/touchcloud simulation/include/touchcloud
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES ${PROJECT_BINARY_DIR}/include/touchcloud/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/touchcloud)
 install(EXPORT touchcloudTargets NAMESPACE touchcloud::

@@ -32,7 +32,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gelsight_simulation.hpp"
+#include "touchcloud/simulation/gelsight_simulation.hpp"
 #include "gradients/photometric_depth_solver.hpp"
 #include "touchcloud/file_write.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
@@ -41,7 +41,7 @@
 #endif
 
 using namespace touchcloud;
-using touch_simulator::ObjectSurface;
+using simulation::ObjectSurface;
 
 namespace {
 
@@ -88,8 +88,8 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  auto fox_scene = touch_simulator::load_scene(kSource + "/sample_clouds/fox_mask/scene_gelsight.yaml");
-  std::shared_ptr<const ObjectSurface> fox = touch_simulator::make_object_surface(fox_scene.object);
+  auto fox_scene = simulation::load_scene(kSource + "/sample_clouds/fox_mask/scene_gelsight.yaml");
+  std::shared_ptr<const ObjectSurface> fox = simulation::make_object_surface(fox_scene.object);
   return {
       {"sphere (radius 5 mm)", std::make_shared<HeightFunction>([](double x, double y) {
          const double r2 = x * x + y * y;
@@ -140,14 +140,14 @@ struct Setup {
 #ifdef TOUCHCLOUD_WITH_NETWORKS
   std::unique_ptr<learning::TactileNetPair> nets;
 #endif
-  touch_simulator::Scene scene;
+  simulation::Scene scene;
 };
 
 // The table's rows of one case: the press simulated and scored by each method.
 std::string case_rows(const Case& c, const Setup& setup) {
   std::ostringstream table;
   table << std::fixed << std::setprecision(3);
-  touch_simulator::GelSightSimulation sim(setup.scene, 1, c.object);
+  simulation::GelSightSimulation sim(setup.scene, 1, c.object);
   for (int i = 0; i < 100000; ++i)
     if (sim.step(c.target, false).travel_past_contact_mm >= c.press_mm) break;
   const cv::Mat image = sim.render().image, reference = sim.render_reference().image;
@@ -257,7 +257,7 @@ static int run(int argc, char** argv) {
 #ifdef TOUCHCLOUD_WITH_NETWORKS
                 nullptr,
 #endif
-                touch_simulator::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml")};
+                simulation::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml")};
 #ifdef TOUCHCLOUD_WITH_NETWORKS
     torch::set_num_threads(1);  // accuracy only; one thread is fastest on a busy 2-core machine
     setup.nets = std::make_unique<learning::TactileNetPair>(contact_net, depth_net);
@@ -266,7 +266,7 @@ static int run(int argc, char** argv) {
     // approach overshooting the press depth.
     setup.scene.robot.approach_speed_mm_s = 0;
     if (noise > 0) {
-      setup.scene.effects.add(touch_simulator::Effect::PixelNoise);
+      setup.scene.effects.add(simulation::Effect::PixelNoise);
       setup.scene.effect_parameters.noise_sigma_grey = noise;
     }
     for (std::size_t i = 0; i < all.size(); ++i)

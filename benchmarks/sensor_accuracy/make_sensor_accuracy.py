@@ -47,7 +47,7 @@ SENSORS = {"calibrated": "sample_clouds/gelstereo_palm2/sensor_calibrated.yaml",
 TARGETS = [(0, 0), (4, 3), (-5, 2), (3, -6), (-2, -4)]
 # Table 1's objects, as its realistic pipelines sense them: one press on each
 # named feature (calibrated sensor only; not part of the check). Fox mask
-# (plugins/touch_simulator/objects): face dome, right eye hollow, both ears,
+# (simulation/src/objects): face dome, right eye hollow, both ears,
 # nose tip; wave surface: along its crest line, both waves, flat end, ripples.
 FEATURE_OBJECTS = {
     "fox mask": ("sample_clouds/fox_mask/scene_realistic.yaml",

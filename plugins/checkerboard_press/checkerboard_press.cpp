@@ -3,12 +3,12 @@
 // TRUE sensor, its inner corners imaged through the plate by both cameras,
 // with pixel noise; what cv::findChessboardCorners would give on real images.
 #include <cmath>
-#include "touchcloud/number_text.hpp"
 #include <sstream>
 
-#include "board/board_press.hpp"
+#include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/simulation/board/board_press.hpp"
 
 namespace touchcloud {
 
@@ -26,7 +26,7 @@ class CheckerboardPress final : public Stage {
   Eigen::Isometry3d left_from_sensor_ = Eigen::Isometry3d::Identity();
   double gel_radius_mm_ = 0;
   sensor::Checkerboard board_;
-  std::vector<checkerboard_press::BoardPose> poses_;
+  std::vector<simulation::BoardPose> poses_;
   std::size_t next_ = 0;
 
   void declare_parameters(ParameterSet& p) override {
@@ -83,13 +83,13 @@ class CheckerboardPress final : public Stage {
     gel_radius_mm_ = sensor.gel.radius_mm();
     poses_.clear();
     for (std::size_t i = 0; i + 2 < presses_.size(); i += 3) {
-      checkerboard_press::BoardPose pose;
+      simulation::BoardPose pose;
       pose.tilt_deg = {presses_[i], presses_[i + 1]};
       pose.depth_mm = presses_[i + 2];
       poses_.push_back(pose);
     }
     if (poses_.empty())
-      poses_ = checkerboard_press::random_board_poses(random_presses_, max_tilt_deg_,
+      poses_ = simulation::random_board_poses(random_presses_, max_tilt_deg_,
                                                {depth_range_mm_[0], depth_range_mm_[1]}, ctx.rng());
     next_ = 0;
   }
@@ -100,8 +100,8 @@ class CheckerboardPress final : public Stage {
                            "all " + std::to_string(poses_.size()) + " presses are used; end the loop with "
                            "'until: <this stage>.last_press' or fewer max_iterations");
     const auto& pose = poses_[next_];
-    const auto corners = checkerboard_press::board_corners_sensor(board_, pose, gel_radius_mm_);
-    const auto set = checkerboard_press::image_press(*rig_, left_from_sensor_, corners, gel_radius_mm_,
+    const auto corners = simulation::board_corners_sensor(board_, pose, gel_radius_mm_);
+    const auto set = simulation::image_press(*rig_, left_from_sensor_, corners, gel_radius_mm_,
                                               {noise_px_, min_height_mm_}, ctx.rng());
     std::ostringstream s;
     s << "press " << next_ << ": tilt [" << pose.tilt_deg.x() << ", " << pose.tilt_deg.y() << "] deg, depth "

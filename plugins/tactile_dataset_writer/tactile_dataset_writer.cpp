@@ -35,7 +35,7 @@ class TactileDatasetWriter final : public Stage {
 
   void declare_ports(PortSet& ports) override {
     ports.input<MonoColourFramePtr>("image", "the tactile image");
-    ports.input<HeightMapPtr>("height", "its height map (mm) and contact mask (e.g. touch_simulator.height_truth)");
+    ports.input<HeightMapPtr>("height", "its height map (mm) and contact mask (e.g. gelsight_simulator.height_truth)");
     ports.optional_input<MonoColourFramePtr>("reference", "the no-contact image (written once)");
     ports.metric("samples_written", "samples", "samples written into the dataset").final();
     ports.metric("validation_samples", "samples", "of them, samples in the validation split").final();

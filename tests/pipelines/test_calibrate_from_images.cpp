@@ -24,11 +24,11 @@ class CalibrateFromImages : public ::testing::Test {
   static void SetUpTestSuite() {
     images_ = new test::TempDir;
     const auto truth = sensor::load_gelstereo_sensor(test::source_dir() / kTruthFile);
-    checkerboard_press::CalibrationImageOptions options;  // 12 pairs in air, 1 grey level of noise
+    simulation::CalibrationImageOptions options;  // 12 pairs in air, 1 grey level of noise
     options.press_pairs = 24;
     options.air_pairs = 20;
     std::mt19937_64 rng(2026);
-    const auto set = checkerboard_press::render_calibration_images(truth, options, rng);
+    const auto set = simulation::render_calibration_images(truth, options, rng);
     test::write_image_pairs(*images_ / "air", set.air);
     test::write_image_pairs(*images_ / "press", set.press);
   }

@@ -8,10 +8,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cloud_files.hpp"
-#include "objects/object_surface.hpp"
-#include "scene/scene.hpp"
+#include "touchcloud/simulation/objects/object_surface.hpp"
+#include "touchcloud/simulation/scene/scene.hpp"
 #include "test_support.hpp"
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 
 using namespace touchcloud;
 namespace fs = std::filesystem;
@@ -57,7 +57,7 @@ TEST(SensingChain, StableContactAtTheTruthsFrameAndSalientPointsOnTheSurface) {
   // Contact markers lie on the fox mask: in the base frame each salient point
   // is within 0.1 mm of the mask's height there.
   const PointCloud salient = test::load_cloud(dir / "out/salient_rsrt.pcd");
-  const auto surface = touch_simulator::make_object_surface(touch_simulator::load_scene(kFoxScene).object);
+  const auto surface = simulation::make_object_surface(simulation::load_scene(kFoxScene).object);
   double worst = 0;
   for (const auto& p : salient) worst = std::max(worst, std::abs(p.z - surface->height_mm({p.x, p.y})));
   EXPECT_LT(worst, 0.1) << "farthest salient point from the surface";
@@ -76,7 +76,7 @@ stages:
       max_iterations: 300
       until: sim.touch_done
       stages:
-        - {id: sim, plugin: touch_simulator, params: {scene: )" + scene + R"(, target_xy_mm: [10, 5]},
+        - {id: sim, plugin: marker_gelstereo_simulator, params: {scene: )" + scene + R"(, target_xy_mm: [10, 5]},
            inputs: {contact: contact.state@previous}}
         - {id: match, plugin: marker_matching, params: {sensor: )" + sensor + R"(}, inputs: {markers: sim.markers}}
         - {id: rsrt, plugin: rsrt_triangulation, params: {sensor: )" + sensor + R"(},
@@ -153,7 +153,7 @@ TEST(SensingChain, RenderedImagesGiveTheSameContactFrameAndSalientPointsNearTheS
   EXPECT_EQ(metric(r, "contact.frames_to_stable"), metric(r, "truth_contact.frames_to_stable"));
   EXPECT_GE(metric(r, "match.matched_fewest"), 0.99 * metric(r, "sim.markers_seen_both"));
   const PointCloud salient = test::load_cloud(dir / "out/salient_rsrt.pcd");
-  const auto surface = touch_simulator::make_object_surface(touch_simulator::load_scene(kFoxScene).object);
+  const auto surface = simulation::make_object_surface(simulation::load_scene(kFoxScene).object);
   double sum = 0, worst = 0;
   for (const auto& p : salient) {
     const double off = std::abs(p.z - surface->height_mm({p.x, p.y}));
@@ -170,7 +170,7 @@ TEST(SensingChain, RecordedImageFilesGoThroughTheSameChain) {
   // Image files as a user records them: frame 0 without contact, then the
   // gel pressed into the fox mask; read with stereo_image_reader.
   test::TempDir dir;
-  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml"), 3);
+  simulation::GelStereoSimulation sim(simulation::load_scene(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml"), 3);
   std::vector<Eigen::Vector3d> truth_sensor;
   for (int frame = 0, file = 0; file < 3; ++frame) {
     const auto& f = sim.step({-20, 15}, false);
@@ -178,7 +178,7 @@ TEST(SensingChain, RecordedImageFilesGoThroughTheSameChain) {
     const StereoFrame images = sim.render();
     ASSERT_TRUE(cv::imwrite((dir / ("left_" + std::to_string(file) + ".png")).string(), images.left));
     ASSERT_TRUE(cv::imwrite((dir / ("right_" + std::to_string(file) + ".png")).string(), images.right));
-    truth_sensor = f.gel.markers_sensor_mm;
+    truth_sensor = sim.gel().markers_sensor_mm;
     ++file;
   }
   fs::copy_file(test::source_dir() / "sample_clouds/fox_mask/scene_images.yaml", dir / "sensor.yaml");

@@ -1,7 +1,7 @@
 // A rendered calibration set written as image files in the layout
 // pipelines/calibrate_from_images.yaml reads: air/ and press/, each with
 // left_N.png and right_N.png. Tests that include this link
-// touchcloud_checkerboard_image_lib and opencv_imgcodecs.
+// touchcloud::simulation and opencv_imgcodecs.
 #pragma once
 
 #include <filesystem>
@@ -9,7 +9,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "board/calibration_images.hpp"
+#include "touchcloud/simulation/board/calibration_images.hpp"
 
 namespace touchcloud::test {
 
@@ -19,7 +19,7 @@ inline void write_image(const std::filesystem::path& file, const cv::Mat& image)
 }
 
 inline void write_image_pairs(const std::filesystem::path& folder,
-                              const std::vector<checkerboard_press::StereoImages>& pairs) {
+                              const std::vector<simulation::StereoImages>& pairs) {
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     write_image(folder / ("left_" + std::to_string(i) + ".png"), pairs[i].left);
     write_image(folder / ("right_" + std::to_string(i) + ".png"), pairs[i].right);

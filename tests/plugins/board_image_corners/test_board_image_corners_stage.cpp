@@ -3,7 +3,7 @@
 // numbered) refused with the file or parameter named.
 #include <gtest/gtest.h>
 
-#include "board/calibration_images.hpp"
+#include "touchcloud/simulation/board/calibration_images.hpp"
 #include "calibration_image_files.hpp"
 #include "pipeline_fixture.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
@@ -16,11 +16,11 @@ class BoardImageCornersStage : public test::PipelineFixture {
   void SetUp() override {
     const auto truth =
         sensor::load_gelstereo_sensor(test::source_dir() / "sample_clouds/gelstereo_palm2/sensor_true.yaml");
-    checkerboard_press::CalibrationImageOptions options;
+    simulation::CalibrationImageOptions options;
     options.air_pairs = 2;
     options.press_pairs = 0;
     std::mt19937_64 rng(11);
-    test::write_image_pairs(dir_ / "air", checkerboard_press::render_calibration_images(truth, options, rng).air);
+    test::write_image_pairs(dir_ / "air", simulation::render_calibration_images(truth, options, rng).air);
   }
   std::string pipeline(const std::string& params = "") {
     const auto air = (dir_ / "air").string();

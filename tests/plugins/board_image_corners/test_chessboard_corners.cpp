@@ -6,14 +6,14 @@
 
 #include <gtest/gtest.h>
 
-#include "board/board_image.hpp"
-#include "board/board_press.hpp"
+#include "touchcloud/simulation/board/board_image.hpp"
+#include "touchcloud/simulation/board/board_press.hpp"
 #include "detection/chessboard_corners.hpp"
 #include "test_support.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 
 using namespace touchcloud;
-using namespace touchcloud::checkerboard_press;
+using namespace touchcloud::simulation;
 using board_image_corners::find_board_corners;
 
 namespace {

@@ -10,12 +10,12 @@
 
 using namespace touchcloud;
 using namespace touchcloud::test;
-using touch_simulator::TouchSimulation;
+using simulation::GelStereoSimulation;
 
 TEST(ContactMask, FindsTheSpheresContactAgainstTheReferencePair) {
   TempDir dir;
   write_file(dir / "sphere.obj", sphere_obj(8.0, 2.0));
-  TouchSimulation s(colour_scene(dir, "{mesh: sphere.obj}", "[contact, render, refraction, pixel_noise]"), 1);
+  GelStereoSimulation s(colour_scene(dir, "{mesh: sphere.obj}", "[contact, render, refraction, pixel_noise]"), 1);
   press_into(s, {0, 0}, 1.5);
   const auto frame = std::make_shared<ColourStereoFrame>(s.render_colour());
   const auto reference = std::make_shared<ColourStereoFrame>(s.render_colour_reference());

@@ -8,14 +8,14 @@
 namespace touchcloud::test {
 
 std::vector<RenderedFrame> rendered_fox_frames(double blur_sigma_px, double press_mm, std::uint64_t noise_seed) {
-  touch_simulator::Scene scene = touch_simulator::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
-  scene.effects = touch_simulator::EffectSet();
-  for (auto e : {touch_simulator::Effect::Contact, touch_simulator::Effect::Refraction, touch_simulator::Effect::Render, touch_simulator::Effect::PixelNoise,
-                 touch_simulator::Effect::Blur})
+  simulation::Scene scene = simulation::load_scene(std::filesystem::path(TOUCHCLOUD_SOURCE_DIR) / "sample_clouds/fox_mask/scene.yaml");
+  scene.effects = simulation::EffectSet();
+  for (auto e : {simulation::Effect::Contact, simulation::Effect::Refraction, simulation::Effect::Render, simulation::Effect::PixelNoise,
+                 simulation::Effect::Blur})
     scene.effects.add(e);
   scene.effect_parameters.noise_sigma_grey = 2.0;
   scene.effect_parameters.blur_sigma_px = blur_sigma_px;
-  touch_simulator::TouchSimulation sim(std::move(scene), noise_seed);
+  simulation::GelStereoSimulation sim(std::move(scene), noise_seed);
 
   const Eigen::Vector2d target_xy_mm(10, 5);
   std::vector<RenderedFrame> frames;
@@ -27,7 +27,7 @@ std::vector<RenderedFrame> rendered_fox_frames(double blur_sigma_px, double pres
   return frames;
 }
 
-DetectionScore score_detections(const std::vector<Eigen::Vector2d>& detected_px, const touch_simulator::ViewPixels& truth,
+DetectionScore score_detections(const std::vector<Eigen::Vector2d>& detected_px, const simulation::ViewPixels& truth,
                                 cv::Size image) {
   // Detections bucketed on a coarse grid; a dot is far smaller than a cell.
   constexpr double kCellPx = 16;
@@ -71,7 +71,7 @@ DetectionScore score_detections(const std::vector<Eigen::Vector2d>& detected_px,
   return s;
 }
 
-DetectionScore score_detections(const std::vector<Marker>& detected, const touch_simulator::ViewPixels& truth, cv::Size image) {
+DetectionScore score_detections(const std::vector<Marker>& detected, const simulation::ViewPixels& truth, cv::Size image) {
   std::vector<Eigen::Vector2d> px;
   px.reserve(detected.size());
   for (const auto& m : detected) px.push_back(m.centre_px);

@@ -8,14 +8,14 @@
 
 #include <opencv2/core.hpp>
 
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 
 namespace touchcloud::test {
 
 struct RenderedFrame {
   std::string name;        // "rest", "pressed"
   StereoFrame frame;       // 1280 x 720 grey
-  touch_simulator::StereoViews truth;  // every marker pixel each camera sees
+  simulation::StereoViews truth;  // every marker pixel each camera sees
 };
 
 // The fox mask scene (sample_clouds/fox_mask/scene.yaml) with contact,
@@ -36,9 +36,9 @@ struct DetectionScore {
 };
 
 // Each true marker is paired with the nearest detection inside its dot.
-DetectionScore score_detections(const std::vector<Eigen::Vector2d>& detected_px, const touch_simulator::ViewPixels& truth,
+DetectionScore score_detections(const std::vector<Eigen::Vector2d>& detected_px, const simulation::ViewPixels& truth,
                                 cv::Size image);
-DetectionScore score_detections(const std::vector<Marker>& detected, const touch_simulator::ViewPixels& truth, cv::Size image);
+DetectionScore score_detections(const std::vector<Marker>& detected, const simulation::ViewPixels& truth, cv::Size image);
 
 // Sum of two scores (a view's and another's); errors weighted by markers found.
 DetectionScore combine(const DetectionScore& a, const DetectionScore& b);

@@ -18,7 +18,7 @@ const std::vector<RenderedFrame>& frames() {
   return f;
 }
 
-DetectionScore detect_and_score(MarkerDetector& detector, const cv::Mat& image, const touch_simulator::ViewPixels& truth) {
+DetectionScore detect_and_score(MarkerDetector& detector, const cv::Mat& image, const simulation::ViewPixels& truth) {
   return score_detections(detector.detect(image), truth, image.size());
 }
 

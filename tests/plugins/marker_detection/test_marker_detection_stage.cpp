@@ -20,7 +20,7 @@ class MarkerDetectionStage : public touchcloud::test::PipelineFixture {
     Pipeline p = load(
         "stages:\n"
         "  - id: sim\n"
-        "    plugin: touch_simulator\n"
+        "    plugin: marker_gelstereo_simulator\n"
         "    params: {scene: scene.yaml, target_xy_mm: [0, 0]}\n"
         "  - id: detect\n"
         "    plugin: marker_detection\n"
@@ -128,7 +128,7 @@ TEST_F(MarkerDetectionStage, ExactlyOneOfFrameAndImageIsWired) {
   write("object: {analytic: plane, height_mm: 10}\neffects: [refraction, render]\n", "scene.yaml");
   auto both = errors(
       "stages:\n"
-      "  - id: sim\n    plugin: touch_simulator\n    params: {scene: scene.yaml, target_xy_mm: [0, 0]}\n"
+      "  - id: sim\n    plugin: marker_gelstereo_simulator\n    params: {scene: scene.yaml, target_xy_mm: [0, 0]}\n"
       "  - id: read\n    plugin: image_reader\n    params: {path: dots.png}\n"
       "  - id: detect\n    plugin: marker_detection\n    inputs: {frame: sim.frame, image: read.image}\n");
   ASSERT_EQ(both.size(), 1u);

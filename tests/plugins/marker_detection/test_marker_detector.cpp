@@ -7,17 +7,17 @@
 
 #include "detector/marker_detector.hpp"
 #include "detector/mask_blobs.hpp"
-#include "render/marker_renderer.hpp"
+#include "touchcloud/simulation/render/marker_renderer.hpp"
 
 using namespace touchcloud;
 
 namespace {
 
-cv::Mat dots_image(const std::vector<touch_simulator::MarkerDot>& dots, int width = 80, int height = 60) {
-  touch_simulator::RenderStyle flat;
+cv::Mat dots_image(const std::vector<simulation::MarkerDot>& dots, int width = 80, int height = 60) {
+  simulation::RenderStyle flat;
   flat.vignetting = 0;
   flat.gradient = 0;
-  return touch_simulator::MarkerRenderer(width, height, flat).render(dots);
+  return simulation::MarkerRenderer(width, height, flat).render(dots);
 }
 
 std::string parameter_of(const MarkerDetectorOptions& o) {
@@ -80,11 +80,11 @@ TEST(MarkerDetector, ADotCutByTheBorderIsOneMarkerOrNone) {
 TEST(MarkerDetector, QualityIsContrastShapeAndCompletenessAndMinQualityDrops) {
   // Flat light (200): a dark dot (40: contrast 160, over 4 thresholds of 30)
   // and a faint one (160: contrast 40, 4/3 of a threshold).
-  touch_simulator::RenderStyle flat;
+  simulation::RenderStyle flat;
   flat.vignetting = 0, flat.gradient = 0;
-  const cv::Mat dark = touch_simulator::MarkerRenderer(80, 60, flat).render({{{20.0, 30.0}, 4.0}});
+  const cv::Mat dark = simulation::MarkerRenderer(80, 60, flat).render({{{20.0, 30.0}, 4.0}});
   flat.marker_grey = 160;
-  const cv::Mat image = cv::min(dark, touch_simulator::MarkerRenderer(80, 60, flat).render({{{55.0, 30.0}, 4.0}}));
+  const cv::Mat image = cv::min(dark, simulation::MarkerRenderer(80, 60, flat).render({{{55.0, 30.0}, 4.0}}));
   MarkerDetector detector{MarkerDetectorOptions{}};
   const auto found = detector.detect(image);
   ASSERT_EQ(found.size(), 2u);

@@ -9,7 +9,7 @@
 
 #include "stage_harness.hpp"
 #include "stereo_matcher.hpp"
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 
 using namespace touchcloud;
@@ -51,7 +51,7 @@ Anonymised anonymise(MarkerSet set, std::mt19937_64& rng) {
 TEST(RestingGelMatcher, PairsTheReferenceFramesMarkersCorrectly) {
   TempDir dir;
   const auto scene_file = write_scene(dir, kNoisyEffects);
-  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(scene_file), 5);
+  simulation::GelStereoSimulation sim(simulation::load_scene(scene_file), 5);
   sim.step({0, 0}, false);  // at the safe height: no contact
   const MarkerSet truth = sim.marker_set();
   std::mt19937_64 rng(1);
@@ -74,7 +74,7 @@ TEST(RestingGelMatcher, PairsTheReferenceFramesMarkersCorrectly) {
 TEST(MarkerMatchingStage, IdsFollowTheirMarkersThroughAPressAndOneViewMarkersStayUnpaired) {
   TempDir dir;
   const auto scene_file = write_scene(dir, kNoisyEffects);
-  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(scene_file), 7);
+  simulation::GelStereoSimulation sim(simulation::load_scene(scene_file), 7);
   test::StageHarness stage("marker_matching", {{"sensor", scene_file.string()}}, "match");
   stage.configure();
   std::mt19937_64 rng(2);
@@ -146,7 +146,7 @@ TEST(MarkerMatchingStage, ASensorFileThatDoesNotFitTheImagesIsNamed) {
   // 40 mm, so no prediction lands near a right marker.
   TempDir dir;
   const auto scene_file = write_scene(dir, "[contact, refraction]");
-  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(scene_file), 1);
+  simulation::GelStereoSimulation sim(simulation::load_scene(scene_file), 1);
   sim.step({0, 0}, false);
   const auto wrong_file = dir / "wrong_sensor.yaml";
   test::write_file(wrong_file, "sensor: {cameras: {baseline_mm: 40}}\n");

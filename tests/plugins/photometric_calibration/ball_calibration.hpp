@@ -23,7 +23,7 @@ inline std::filesystem::path calibrate_on_ball(const TempDir& dir, const std::ve
                       {"degree", std::int64_t{degree}}},
                      "calibrate", settings);
   stage.configure();
-  touch_simulator::GelSightSimulation sim(ball_scene(), 1);
+  simulation::GelSightSimulation sim(ball_scene(), 1);
   for (const auto& xy : targets) {
     press_pad_into(sim, xy, kBallPressMm);
     stage.process({{"image", MonoColourFramePtr(std::make_shared<MonoColourFrame>(sim.render()))},

@@ -85,7 +85,7 @@ TEST(PhotometricDepth, RecoversASpherePressFromItsImageAfterCalibration) {
   const auto file = calibrate_on_ball(dir, {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}});
   photometric::PhotometricDepthSolver solver(sensor::load_photometric_calibration(file), {});
   // A held-out press of the ball, elsewhere in the image and less deep.
-  touch_simulator::GelSightSimulation sim(ball_scene(), 2);
+  simulation::GelSightSimulation sim(ball_scene(), 2);
   press_pad_into(sim, {0.4, -0.3}, 0.5);
   const auto result = solver.solve(sim.render().image, sim.render_reference().image);
   const HeightMap truth = sim.height_truth(0.05);
@@ -114,7 +114,7 @@ TEST(PhotometricDepth, AFreeBorderKeepsTheHeightOfAContactThatRunsOffTheImage) {
   TempDir dir;
   const auto file = calibrate_on_ball(dir, {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}});
   // The ball under the pad's edge (half width 9.6 mm): part of the contact lies outside the image.
-  touch_simulator::GelSightSimulation sim(ball_scene(), 3);
+  simulation::GelSightSimulation sim(ball_scene(), 3);
   press_pad_into(sim, {8.8, 0.0}, 0.5);
   const HeightMap truth = sim.height_truth(0.05);
   int on_border = 0;
@@ -206,7 +206,7 @@ TEST(PhotometricDepth, TheCliExitsWithTwoOnACalibrationOfAnotherImageSize) {
   const std::string scene = (source_dir() / "sample_clouds/fox_mask/scene_gelsight.yaml").string();
   write_file(dir / "p.yaml", "pipeline: p\nstages:\n"
              "  - id: touch\n    loop:\n      max_iterations: 300\n      until: sim.touch_done\n      stages:\n"
-             "        - {id: sim, plugin: touch_simulator, params: {scene: " + scene + ", target_xy_mm: [0, -46]},\n"
+             "        - {id: sim, plugin: gelsight_simulator, params: {scene: " + scene + ", target_xy_mm: [0, -46]},\n"
              "           inputs: {contact: contact.state@previous}}\n"
              "        - {id: contact, plugin: stable_contact, params: {threshold_mm: 0.3, frames: 3}, inputs: {tactile: sim.tactile}}\n"
              "  - {id: depth, plugin: photometric_depth, params: {calibration: " + calibration.string() + "},\n"

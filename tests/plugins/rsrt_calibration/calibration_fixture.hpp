@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "board/board_press.hpp"
+#include "touchcloud/simulation/board/board_press.hpp"
 #include "calibration/checkerboard.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 #include "test_support.hpp"
@@ -29,22 +29,22 @@ inline const rsrt_calibration::Checkerboard kBoard{8, 6, 4.0};
 
 // Presses of kBoard into `truth`'s gel, imaged with `noise_px`.
 inline std::vector<rsrt_calibration::PressCorners> simulate_presses(const sensor::GelStereoSensor& truth,
-                                                               const std::vector<checkerboard_press::BoardPose>& poses,
+                                                               const std::vector<simulation::BoardPose>& poses,
                                                                double noise_px, std::mt19937_64& rng) {
   const auto rig = sensor::make_stereo_rig(truth, true, true);
   const Eigen::Isometry3d left_from_sensor = truth.sensor_from_left_camera().inverse();
   std::vector<rsrt_calibration::PressCorners> presses;
   for (const auto& pose : poses) {
-    const auto corners = checkerboard_press::board_corners_sensor(kBoard, pose, truth.gel.radius_mm());
-    const auto set = checkerboard_press::image_press(rig, left_from_sensor, corners, truth.gel.radius_mm(),
+    const auto corners = simulation::board_corners_sensor(kBoard, pose, truth.gel.radius_mm());
+    const auto set = simulation::image_press(rig, left_from_sensor, corners, truth.gel.radius_mm(),
                                               {noise_px, 0.5}, rng);
     presses.push_back(rsrt_calibration::press_corners_from(*set, kBoard, "test press"));
   }
   return presses;
 }
 
-inline std::vector<checkerboard_press::BoardPose> flat_poses(int count) {
-  std::vector<checkerboard_press::BoardPose> poses(static_cast<std::size_t>(count));
+inline std::vector<simulation::BoardPose> flat_poses(int count) {
+  std::vector<simulation::BoardPose> poses(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     poses[static_cast<std::size_t>(i)].depth_mm = 4.0 + i;
     poses[static_cast<std::size_t>(i)].spin_deg = 10.0 * i;

@@ -68,7 +68,7 @@ TEST_F(CalibrationRefusals, OneTiltedPressAmongFlatOnesIsAccepted) {
 }
 
 TEST_F(CalibrationRefusals, TooFewCornersAreRefused) {
-  const auto poses = checkerboard_press::random_board_poses(4, 25.0, {4, 10}, rng_);
+  const auto poses = simulation::random_board_poses(4, 25.0, {4, 10}, rng_);
   auto presses = test::simulate_presses(truth_, poses, 0.1, rng_);
   auto sparse = presses;
   sparse[1].corners.resize(5);
@@ -95,7 +95,7 @@ TEST_F(CalibrationRefusals, TooFewCornersAreRefused) {
 }
 
 TEST_F(CalibrationRefusals, BoardThatDoesNotFitTheCornersIsRefused) {
-  const auto poses = checkerboard_press::random_board_poses(4, 25.0, {6, 10}, rng_);
+  const auto poses = simulation::random_board_poses(4, 25.0, {6, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.1, rng_);
   rsrt_calibration::Checkerboard wrong_square = kBoard;
   wrong_square.square_mm = 5.5;

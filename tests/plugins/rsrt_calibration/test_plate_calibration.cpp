@@ -37,12 +37,12 @@ optics::StereoRig perturbed(const optics::StereoRig& truth) {
 class PlateCalibration : public ::testing::Test {
  protected:
   // The true corner positions (left camera frame) of simulated presses, press by press, corner by corner.
-  std::vector<std::vector<Eigen::Vector3d>> truth_positions(const std::vector<checkerboard_press::BoardPose>& poses,
+  std::vector<std::vector<Eigen::Vector3d>> truth_positions(const std::vector<simulation::BoardPose>& poses,
                                                             const std::vector<rsrt_calibration::PressCorners>& presses) {
     const Eigen::Isometry3d left_from_sensor = truth_.sensor_from_left_camera().inverse();
     std::vector<std::vector<Eigen::Vector3d>> out;
     for (std::size_t p = 0; p < poses.size(); ++p) {
-      const auto all = checkerboard_press::board_corners_sensor({kBoard.cols, kBoard.rows, kBoard.square_mm}, poses[p],
+      const auto all = simulation::board_corners_sensor({kBoard.cols, kBoard.rows, kBoard.square_mm}, poses[p],
                                                          truth_.gel.radius_mm());
       out.emplace_back();
       for (const auto& c : presses[p].corners) out.back().push_back(left_from_sensor * all[static_cast<std::size_t>(c.id)]);
@@ -72,7 +72,7 @@ class PlateCalibration : public ::testing::Test {
 };
 
 TEST_F(PlateCalibration, NoiseFreePressesGiveTheTruth) {
-  const auto poses = checkerboard_press::random_board_poses(8, 25.0, {4, 10}, rng_);
+  const auto poses = simulation::random_board_poses(8, 25.0, {4, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.0, rng_);
   const auto r = rsrt_calibration::calibrate_plate(perturbed(true_rig_), kBoard, presses);
   const auto& t = true_rig_.plate();
@@ -93,7 +93,7 @@ TEST_F(PlateCalibration, NoiseFreePressesGiveTheTruth) {
 }
 
 TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPresses) {
-  const auto poses = checkerboard_press::random_board_poses(24, 25.0, {4, 10}, rng_);
+  const auto poses = simulation::random_board_poses(24, 25.0, {4, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.1, rng_);
   const auto start = perturbed(true_rig_);
   const auto r = rsrt_calibration::calibrate_plate(start, kBoard, presses);
@@ -114,7 +114,7 @@ TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPres
   EXPECT_LT(angle_deg(r.plate.normal, t.normal), 4 * r.sigma_normal_deg);
 
   // Presses the solver did not see.
-  const auto held_out_poses = checkerboard_press::random_board_poses(8, 25.0, {4, 10}, rng_);
+  const auto held_out_poses = simulation::random_board_poses(8, 25.0, {4, 10}, rng_);
   const auto held_out = test::simulate_presses(truth_, held_out_poses, 0.1, rng_);
   held_out_truth_ = truth_positions(held_out_poses, held_out);
   const optics::StereoRig estimated(true_rig_.camera(optics::StereoSide::Left),
@@ -146,7 +146,7 @@ TEST_F(PlateCalibration, NoisyTiltedPressesRecoverThePlateAndSquareUpHeldOutPres
 }
 
 TEST_F(PlateCalibration, StartsFromTheNominalSensor) {
-  const auto poses = checkerboard_press::random_board_poses(24, 25.0, {4, 10}, rng_);
+  const auto poses = simulation::random_board_poses(24, 25.0, {4, 10}, rng_);
   const auto presses = test::simulate_presses(truth_, poses, 0.1, rng_);
   const auto nominal = sensor::make_stereo_rig(test::nominal_sensor(), true, true);
   const auto r = rsrt_calibration::calibrate_plate(nominal, kBoard, presses);

@@ -7,7 +7,7 @@
 
 #include "marker_triangulator.hpp"
 #include "test_support.hpp"
-#include "touch_simulation.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
 
 using namespace touchcloud;
@@ -32,7 +32,7 @@ struct TiltedSensor {
 
 TEST(MarkerTriangulator, ExactPixelsGiveTheMarkersAndTheFirstFrameIsTheReference) {
   TiltedSensor s;
-  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(s.scene_file), 1);
+  simulation::GelStereoSimulation sim(simulation::load_scene(s.scene_file), 1);
   auto tri = s.triangulator();
   sim.step({0, 0}, false);
   const TactileCloud rest = tri.triangulate(sim.marker_set());
@@ -46,7 +46,7 @@ TEST(MarkerTriangulator, ExactPixelsGiveTheMarkersAndTheFirstFrameIsTheReference
   double worst = 0, deepest = 0;
   for (std::size_t k = 0; k < t.points->size(); ++k) {
     const int id = t.marker_ids[k];  // the simulator's marker ids
-    const Eigen::Vector3d truth = sim.frame().gel.markers_sensor_mm[id];
+    const Eigen::Vector3d truth = sim.gel().markers_sensor_mm[id];
     const Eigen::Vector3d rest_truth = sim.markers().rest_mm[id];
     // PCL stores floats: compare through the double displacement too.
     worst = std::max(worst, std::abs(t.displacement_mm[k] - (truth - rest_truth).norm()));
@@ -60,7 +60,7 @@ TEST(MarkerTriangulator, ExactPixelsGiveTheMarkersAndTheFirstFrameIsTheReference
 
 TEST(MarkerTriangulator, PairsWhoseRaysMissEachOtherAreRefusedAndCounted) {
   TiltedSensor s;
-  touch_simulator::TouchSimulation sim(touch_simulator::load_scene(s.scene_file), 1);
+  simulation::GelStereoSimulation sim(simulation::load_scene(s.scene_file), 1);
   sim.step({0, 0}, false);
   MarkerSet set = sim.marker_set();
   // Pair each left marker with the right marker of the next pair: rays of

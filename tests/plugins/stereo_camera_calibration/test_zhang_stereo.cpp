@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "board/calibration_images.hpp"
+#include "touchcloud/simulation/board/calibration_images.hpp"
 #include "calibration/zhang_stereo.hpp"
 #include "detection/chessboard_corners.hpp"
 #include "test_support.hpp"
@@ -33,11 +33,11 @@ AirSet air_set(int pairs, std::uint64_t seed) {
   set.truth.cameras.right.distortion = {-0.04, 0.015, -0.0004, 0.0002, 0.0};
   set.truth.cameras.right_from_left.linear() =
       Eigen::AngleAxisd(1.0 * M_PI / 180, Eigen::Vector3d(0.2, 1, 0.1).normalized()).toRotationMatrix();
-  checkerboard_press::CalibrationImageOptions options;
+  simulation::CalibrationImageOptions options;
   options.air_pairs = pairs;
   options.press_pairs = 0;
   std::mt19937_64 rng(seed);
-  const auto images = checkerboard_press::render_calibration_images(set.truth, options, rng);
+  const auto images = simulation::render_calibration_images(set.truth, options, rng);
   set.views.width_px = 1280;
   set.views.height_px = 720;
   set.views.cols = options.air_board.cols;

@@ -12,7 +12,7 @@
 using namespace touchcloud;
 using namespace touchcloud::test;
 using namespace touchcloud::stereo_disparity;
-using touch_simulator::TouchSimulation;
+using simulation::GelStereoSimulation;
 
 namespace {
 
@@ -24,7 +24,7 @@ struct Pressed {
 Pressed press(const std::string& object_obj, const std::string& name) {
   TempDir dir;
   write_file(dir / name, object_obj);
-  TouchSimulation s(colour_scene(dir, "{mesh: " + name + "}", "[contact, elastic_spread, render, refraction]"), 1);
+  GelStereoSimulation s(colour_scene(dir, "{mesh: " + name + "}", "[contact, elastic_spread, render, refraction]"), 1);
   press_into(s, {0, 0}, 1.5);
   return {s.render_colour(), s.dense_truth()};
 }

@@ -15,7 +15,7 @@ const std::string kPipeline =
     "pipeline: dense_press\n"
     "stages:\n"
     "  - id: sim\n"
-    "    plugin: touch_simulator\n"
+    "    plugin: colour_gelstereo_simulator\n"
     "    params: {scene: scene.yaml, target_xy_mm: [0, 0]}\n"
     "  - id: disparity\n"
     "    plugin: stereo_disparity\n"

@@ -1,0 +1,118 @@
+#include "touchcloud/simulation/gelsight_simulation.hpp"
+
+#include "touchcloud/simulation/render/counter_random.hpp"
+
+namespace touchcloud::simulation {
+
+namespace {
+
+Scene require_gelsight(Scene scene) {
+  if (scene.family != sensor::SensorFamily::GelSight)
+    throw InputError("the scene " + scene.file.string() +
+                     " describes a GelStereo (sensor.family gelstereo); the GelSight simulation needs "
+                     "'family: gelsight' in its sensor section");
+  return scene;
+}
+
+}  // namespace
+
+GelSightSimulation::GelSightSimulation(Scene scene, std::uint64_t noise_seed,
+                                       std::shared_ptr<const ObjectSurface> object)
+    : TouchSimulation(require_gelsight(std::move(scene)), noise_seed, std::move(object), kGelSightPoseNoise),
+      renderer_(this->scene().gelsight) {
+  const Scene& s = this->scene();
+  if (s.effects.has(Effect::Render) && s.effects.has(Effect::PixelNoise) && s.effect_parameters.noise_sigma_grey > 0)
+    image_noise_ = std::make_unique<ImageNoise>(s.effect_parameters.noise_sigma_grey);
+}
+
+bool GelSightSimulation::press(const Eigen::Isometry3d& base_from_sensor) {
+  press_pad(sensor(), base_from_sensor, object(), contact(), pad_);
+  return pad_.overlapping_px > 0;
+}
+
+const PadPress& GelSightSimulation::pad() const {
+  frame();
+  return pad_;
+}
+
+MonoColourFrame GelSightSimulation::stamped(cv::Mat image) const {
+  MonoColourFrame out;
+  out.image = std::move(image);
+  out.sensor = sensor().name;
+  out.mm_per_px = sensor().mm_per_px;
+  out.timestamp_s = frame().timestamp_s;
+  out.index = frame().index;
+  out.pose.base_from_sensor = frame().reported_base_from_sensor;
+  return out;
+}
+
+MonoColourFrame GelSightSimulation::render() {
+  if (!scene().effects.has(Effect::Render))
+    throw InputError("the GelSight image was asked for, but the scene " + scene().file.string() +
+                     " has no 'render' effect: add 'render' to its effects");
+  cv::Mat image = renderer_.render(pad().height_mm);
+  // The lens blurs; the sensor then adds its noise.
+  if (scene().effects.has(Effect::Blur)) blur_image(image, scene().effect_parameters.blur_sigma_px);
+  if (image_noise_) {
+    cv::Mat grey_view = image.reshape(1);  // each channel its own noise
+    image_noise_->apply(grey_view, draw_key(noise_seed(), {kGelSightImageNoise, static_cast<std::uint64_t>(frame().index)}));
+  }
+  count_rendered_frame();
+  return stamped(image);
+}
+
+MonoColourFrame GelSightSimulation::render_reference() {
+  frame();
+  return stamped(renderer_.background().clone());
+}
+
+HeightMap GelSightSimulation::height_truth(double contact_threshold_mm) const {
+  const TouchFrame& f = frame();
+  HeightMap map;
+  map.height_mm = pad_.height_mm.clone();
+  map.valid = cv::Mat(map.height_mm.size(), CV_8UC1, cv::Scalar(255));
+  map.contact_mask = map.height_mm > contact_threshold_mm;
+  map.sensor = sensor().name;
+  map.mm_per_px = sensor().mm_per_px;
+  map.gel_thickness_mm = sensor().gel_thickness_mm;
+  map.timestamp_s = f.timestamp_s;
+  map.index = f.index;
+  map.pose.base_from_sensor = f.touch.base_from_sensor;  // the truth's true pose
+  return map;
+}
+
+TactileCloud GelSightSimulation::truth_tactile(int stride_px) const {
+  const HeightMap map = height_truth(0.0);
+  auto points = std::make_shared<PointCloud>(), reference = std::make_shared<PointCloud>();
+  TactileCloud t;
+  const cv::Mat& h = map.height_mm;
+  for (int v = stride_px / 2; v < h.rows; v += stride_px)
+    for (int u = stride_px / 2; u < h.cols; u += stride_px) {
+      const double height = h.at<float>(v, u);
+      const Eigen::Vector3f p = map.sensor_point(u, v, height).cast<float>();
+      const Eigen::Vector3f r = map.sensor_point(u, v, 0).cast<float>();
+      points->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+      reference->push_back(pcl::PointXYZ(r.x(), r.y(), r.z()));
+      t.displacement_mm.push_back(height);
+      t.marker_ids.push_back(v * h.cols + u);
+    }
+  t.points = points;
+  t.reference = reference;
+  t.timestamp_s = frame().timestamp_s;
+  t.pose.base_from_sensor = frame().reported_base_from_sensor;
+  return t;
+}
+
+CloudPtr GelSightSimulation::truth_base(int stride_px) const {
+  const HeightMap map = height_truth(0.0);
+  auto cloud = std::make_shared<PointCloud>();
+  const cv::Mat& h = map.height_mm;
+  for (int v = stride_px / 2; v < h.rows; v += stride_px)
+    for (int u = stride_px / 2; u < h.cols; u += stride_px) {
+      const Eigen::Vector3f p = (map.pose.base_from_sensor * map.sensor_point(u, v, h.at<float>(v, u))).cast<float>();
+      cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+    }
+  return cloud;
+}
+
+}  // namespace touchcloud::simulation

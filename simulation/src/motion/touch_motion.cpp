@@ -1,0 +1,71 @@
+#include "touchcloud/simulation/motion/touch_motion.hpp"
+
+#include <sstream>
+
+#include "touchcloud/simulation/render/counter_random.hpp"
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::simulation {
+
+Eigen::Isometry3d PressTarget::sensor_pose(double height_mm) const {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(xy_mm.x(), xy_mm.y(), height_mm);
+  pose.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  return pose;
+}
+
+TouchStep TouchMotion::next(const PressTarget& target, double start_height_mm, bool previous_stable) {
+  if (!target.xy_mm.allFinite()) throw RunError("the touch target is not finite");
+  if (!touching_) {
+    touching_ = true;
+    ++touch_;
+    frame_ = 0;
+    pressed_ = false;
+    target_ = target;
+    height_ = start_height_mm;
+    first_contact_.reset();
+    press_depth_mm_ = robot_.press_depth_mm;
+    if (const auto& range = robot_.press_depth_range_mm) {
+      constexpr std::uint64_t kPressDepth = 21;  // the draw stream of press depths
+      press_depth_mm_ = (*range)[0] + ((*range)[1] - (*range)[0]) *
+                                          uniform_from(draw_key(seed_, {kPressDepth, static_cast<std::uint64_t>(touch_)}));
+    }
+  } else {
+    if (!(target == target_)) {
+      std::ostringstream s;
+      s << "the touch target moved from (" << target_.xy_mm.x() << ", " << target_.xy_mm.y() << ") to ("
+        << target.xy_mm.x() << ", " << target.xy_mm.y() << ") mm during touch " << touch_ << " (frame " << frame_ + 1
+        << "); a new target is taken only after touch_done";
+      throw RunError(s.str());
+    }
+    ++frame_;
+    pressed_ = previous_stable;
+    height_ -= previous_stable ? press_depth_mm_ : first_contact_ ? step_mm_ : approach_step_mm_;
+  }
+  TouchStep step;
+  step.touch = touch_;
+  step.frame_in_touch = frame_;
+  step.pressed = pressed_;
+  step.target = target_;
+  step.base_from_sensor = target_.sensor_pose(height_);
+  return step;
+}
+
+void TouchMotion::observe_overlap(bool overlapping) {
+  if (overlapping && !first_contact_) first_contact_ = height_;
+  if (pressed_) {
+    touching_ = false;  // the recorded frame ends the touch
+    return;
+  }
+  if (travel_past_contact_mm() > robot_.max_contact_depth_mm) {
+    std::ostringstream s;
+    s << "touch " << touch_ << " at (" << target_.xy_mm.x() << ", " << target_.xy_mm.y() << ") mm: the sensor is "
+      << travel_past_contact_mm() << " mm past first contact (frame " << frame_ << " of the touch, sensor origin at z = "
+      << height_ << " mm), beyond max_contact_depth_mm = " << robot_.max_contact_depth_mm
+      << ", and the pipeline reported no stable contact (is input 'contact' wired to a stable-contact stage, "
+         "and does the scene have the 'contact' effect?)";
+    throw RunError(s.str());
+  }
+}
+
+}  // namespace touchcloud::simulation

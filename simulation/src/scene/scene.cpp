@@ -1,0 +1,128 @@
+#include "touchcloud/simulation/scene/scene.hpp"
+#include "touchcloud/path_text.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include "touchcloud/config/yaml_fields.hpp"
+#include "touchcloud/types/workspace_parameters.hpp"
+
+namespace fs = std::filesystem;
+
+namespace touchcloud::simulation {
+
+using config::ConfigFields;
+using config::ConfigProblems;
+using config::FieldRule;
+
+namespace {
+
+void read_robot(ConfigFields& f, RobotSpec& robot) {
+  robot.speed_mm_s = f.number("speed_mm_s", robot.speed_mm_s, FieldRule::Positive);
+  robot.approach_speed_mm_s = f.number("approach_speed_mm_s", robot.approach_speed_mm_s, FieldRule::NonNegative);
+  robot.press_depth_mm = f.number("press_depth_mm", robot.press_depth_mm, FieldRule::NonNegative);
+  robot.safe_clearance_mm = f.number("safe_clearance_mm", robot.safe_clearance_mm, FieldRule::NonNegative);
+  robot.max_contact_depth_mm = f.number("max_contact_depth_mm", robot.max_contact_depth_mm, FieldRule::Positive);
+}
+
+// One effect's own fields (`params` may be absent or null).
+void read_effect(Effect effect, const YAML::Node& params, Scene& scene, ConfigProblems& problems) {
+  ConfigFields f(params, std::string("effects.") + to_string(effect), problems);
+  EffectParameters& p = scene.effect_parameters;
+  switch (effect) {
+    case Effect::ElasticSpread: p.spread_sigma_mm = f.number("sigma_mm", p.spread_sigma_mm, FieldRule::Positive); break;
+    case Effect::PixelNoise:
+      p.noise_sigma_grey = f.number("sigma_grey", p.noise_sigma_grey, FieldRule::NonNegative);
+      p.noise_sigma_px = f.number("sigma_px", p.noise_sigma_px, FieldRule::NonNegative);
+      break;
+    case Effect::Blur: p.blur_sigma_px = f.number("sigma_px", p.blur_sigma_px, FieldRule::Positive); break;
+    case Effect::MarkerDropout:
+      p.dropout_probability = f.number("probability", p.dropout_probability, FieldRule::Probability);
+      break;
+    case Effect::PoseNoise:
+      p.pose_sigma_mm = f.number("sigma_mm", p.pose_sigma_mm, FieldRule::NonNegative);
+      p.pose_sigma_deg = f.number("sigma_deg", p.pose_sigma_deg, FieldRule::NonNegative);
+      break;
+    case Effect::Render:
+      p.background_grey = f.number("background_grey", p.background_grey, FieldRule::Positive);
+      p.vignetting = f.number("vignetting", p.vignetting, FieldRule::Probability);
+      p.marker_grey = f.number("marker_grey", p.marker_grey, FieldRule::NonNegative);
+      if (p.background_grey > 255) f.error("background_grey", "must be at most 255");
+      if (p.marker_grey >= p.background_grey * (1 - p.vignetting))
+        f.error("marker_grey", "must be darker than the background everywhere");
+      break;
+    case Effect::Contact:
+    case Effect::Refraction:
+    case Effect::LensDistortion: break;  // no fields: any given is unknown
+  }
+}
+
+// `effects:` a list of names or {name: {fields}}, or a mapping name -> fields.
+void read_effects(const YAML::Node& node, Scene& scene, ConfigProblems& problems) {
+  if (!node || node.IsNull()) return;
+  const auto add = [&](const YAML::Node& name_node, const YAML::Node& params, const std::string& field) {
+    const std::string name = name_node.as<std::string>("");
+    const auto effect = effect_from_name(name);
+    if (!effect) {
+      problems.add(name_node, field + ": unknown effect '" + name + "' (known: " + effect_names() + ")");
+      return;
+    }
+    if (scene.effects.has(*effect)) {
+      problems.add(name_node, field + ": effect '" + name + "' is named twice");
+      return;
+    }
+    scene.effects.add(*effect);
+    read_effect(*effect, params, scene, problems);
+  };
+  if (node.IsMap()) {
+    for (const auto& kv : node) add(kv.first, kv.second, "effects." + kv.first.as<std::string>(""));
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const YAML::Node item = node[i];
+      const std::string field = "effects[" + std::to_string(i) + "]";
+      if (item.IsScalar()) add(item, YAML::Node(), field);
+      else if (item.IsMap() && item.size() == 1) add(item.begin()->first, item.begin()->second, field);
+      else problems.add(item, field + ": must be an effect name or {name: {fields}}");
+    }
+  } else {
+    problems.add(node, "effects: must be a list of effect names (known: " + effect_names() + ")");
+  }
+}
+
+}  // namespace
+
+Scene load_scene(const fs::path& file) {
+  const YAML::Node root = config::load_yaml_file(file, "scene file");
+  ConfigProblems problems(file);
+  if (!root || root.IsNull()) throw InputError("scene file " + file.string() + " is empty", {file.string()});
+  Scene scene;
+  scene.file = file;
+  scene.sensor.file = file;
+  scene.gelsight.file = file;
+  scene.name = file.parent_path().filename().string();
+  {
+    ConfigFields top(root, "", problems);
+    scene.name = top.text("name", scene.name);
+    top.text("description", "");
+    if (auto object = top.child("object")) read_object_section(*object, scene.object, file.parent_path(), problems);
+    if (auto workspace = top.child("workspace")) read_workspace_section(*workspace, scene.workspace);
+    if (auto fields = top.child("sensor")) {
+      scene.family = sensor::read_sensor_family(*fields);
+      if (scene.family == sensor::SensorFamily::GelSight) sensor::read_gelsight_sensor(*fields, problems, scene.gelsight);
+      else sensor::read_gelstereo_sensor(*fields, problems, scene.sensor);
+    }
+    if (auto robot = top.child("robot")) read_robot(*robot, scene.robot);
+    const YAML::Node effects = top.raw("effects");
+    read_effects(effects, scene, problems);
+    if (scene.family == sensor::SensorFamily::GelSight)
+      for (Effect e : {Effect::Refraction, Effect::LensDistortion, Effect::MarkerDropout})
+        if (scene.effects.has(e))
+          problems.add(effects, std::string("effects: '") + to_string(e) +
+                                    "' does not apply to sensor.family gelsight (a flat gel without markers, seen "
+                                    "straight on); remove it");
+  }
+  problems.throw_if_any();
+  return scene;
+}
+
+}  // namespace touchcloud::simulation

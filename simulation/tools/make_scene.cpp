@@ -1,0 +1,203 @@
+// touchcloud-make-scene MESH --name NAME [--scale S] [--out DIR] [--cell-mm C]
+// A user's object, one command from its mesh (STL, OBJ or PLY, any unit via
+// --scale) to DIR/NAME/: the mesh as given, a scene that centres it on the
+// table (its footprint around the origin, its bottom at z = 0) with a
+// workspace and grid over its footprint, and ground truth sampled from the
+// object as placed. Then it checks the object against the sensor: the size
+// (a unit mistake), the gel's reach at every grid cell, and says what does
+// not fit. Exit 0 (warnings on stderr), 2 bad input, 1 a failed write.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "touchcloud/simulation/objects/object_surface.hpp"
+#include "touchcloud/simulation/objects/reach_check.hpp"
+#include "touchcloud/error.hpp"
+#include "touchcloud/file_write.hpp"
+#include "touchcloud/io/cloud_file.hpp"
+#include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/types/scene_object.hpp"
+#include "touchcloud/types/workspace.hpp"
+
+namespace fs = std::filesystem;
+using namespace touchcloud;
+
+namespace {
+
+constexpr double kGelDiameterMm = 65.0;            // the GelStereo Palm 2.0 of the sample scenes
+constexpr double kGroundTruthPointsPerMm2 = 2.0;   // as make_sample_objects
+constexpr std::uint64_t kGroundTruthSeed = 20240101;
+
+// Numbers as a person writes them: 65, 0.08, never 65.000000 or -0.
+std::string num(double v) {
+  std::ostringstream s;
+  s << (v == 0 ? 0.0 : v);
+  return s.str();
+}
+
+// The smallest cell (three significant digits, rounded up) that keeps a
+// side of `side_mm` within kMaxGridCells cells.
+double smallest_cell_mm(double side_mm) {
+  const double cell = side_mm / kMaxGridCells;
+  const double unit = std::pow(10.0, std::floor(std::log10(cell)) - 2);
+  return std::ceil(cell / unit - 1e-9) * unit;
+}
+
+struct Options {
+  fs::path mesh, out = "sample_clouds";
+  std::string name;
+  double scale = 1.0, cell_mm = 8.6;
+};
+
+std::string scene_yaml(const Options& o, const Eigen::Vector3d& shift, const Eigen::AlignedBox3d& placed, int gx, int gy) {
+  std::ostringstream s;
+  s << "# " << o.name << " (" << placed.sizes().x() << " x " << placed.sizes().y() << " x " << placed.sizes().z()
+    << " mm) on the table, touched by the GelStereo Palm 2.0.\n"
+    << "# Written by touchcloud-make-scene from " << o.mesh.filename().string() << "; edit freely.\n"
+    << "name: " << o.name << "\n"
+    << "object:\n"
+    << "  mesh: " << o.mesh.filename().string() << "\n"
+    << "  scale: " << o.scale << "              # mesh units to mm\n"
+    << "  pose: {xyz_mm: [" << shift.x() << ", " << shift.y() << ", " << shift.z()
+    << "], rpy_deg: [0, 0, 0]}   # footprint centred, bottom on the table\n"
+    << "workspace:                  # base frame: the object's footprint, positions at cell centres\n"
+    << "  x_mm: [" << placed.min().x() << ", " << placed.max().x() << "]\n"
+    << "  y_mm: [" << placed.min().y() << ", " << placed.max().y() << "]\n"
+    << "  grid: [" << gx << ", " << gy << "]\n"
+    << "sensor:\n"
+    << "  gel: {diameter_mm: " << kGelDiameterMm << "}\n"
+    << "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
+    << "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"
+    << "  cameras:\n"
+    << "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"
+    << "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"
+    << "    baseline_mm: 30\n"
+    << "    plate_gap_mm: 45\n"
+    << "  fps: 30\n"
+    << "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
+    << "effects: [contact, refraction]\n";
+  return s.str();
+}
+
+// What does not fit, one line each; empty when all does.
+std::vector<std::string> check_fit(const ObjectSpec& spec, const Eigen::AlignedBox3d& placed, int gx, int gy) {
+  std::vector<std::string> problems;
+  const Eigen::Vector3d size = placed.sizes();
+  const double largest = size.maxCoeff();
+  if (largest < 5.0)
+    problems.push_back("the object is only " + num(largest) +
+                       " mm across: is the mesh in metres or centimetres? (--scale 1000 or 10)");
+  if (largest > 2000.0)
+    problems.push_back("the object is " + num(largest) + " mm across: is the mesh in micrometres? (--scale 0.001)");
+  if (size.x() < kGelDiameterMm && size.y() < kGelDiameterMm)
+    problems.push_back("the footprint is smaller than the gel (" + num(kGelDiameterMm) +
+                       " mm): every touch covers the whole object");
+  const auto surface = simulation::make_object_surface(spec);
+  const double r = 0.5 * kGelDiameterMm;
+  const double cx = size.x() / gx, cy = size.y() / gy;
+  int unreachable = 0;
+  std::ostringstream worst;
+  double worst_gap = 0;
+  for (int j = 0; j < gy; ++j)
+    for (int i = 0; i < gx; ++i) {
+      const Eigen::Vector2d c(placed.min().x() + (i + 0.5) * cx, placed.min().y() + (j + 0.5) * cy);
+      const double gap = simulation::apex_gap_mm(*surface, c, r);
+      if (gap <= simulation::kDefaultReachToleranceMm) continue;
+      ++unreachable;
+      if (gap > worst_gap) {
+        worst_gap = gap;
+        worst.str("");
+        worst << "(" << c.x() << ", " << c.y() << ") mm, where it stops " << gap << " mm above the surface";
+      }
+    }
+  if (unreachable > 0)
+    problems.push_back(std::to_string(unreachable) + " of " + std::to_string(gx * gy) +
+                       " grid cells cannot be reached by the gel (a hole or a wall narrower than its " +
+                       num(kGelDiameterMm) + " mm); the worst at " + worst.str() +
+                       ": the simulator will report such touches and the surface there is extrapolation");
+  return problems;
+}
+
+int make_scene(const Options& o) {
+  if (o.name.empty() || o.name.find_first_of("/\\.") != std::string::npos)
+    throw InputError("--name '" + o.name + "': a folder name without '/', '\\' or '.'");
+  const scoring::TriangleMesh raw = scoring::read_triangle_mesh(o.mesh);  // InputError naming the file
+  Eigen::AlignedBox3d box;
+  for (const auto& v : raw.vertices) box.extend(o.scale * v);
+  // + 0.0 turns -0 into 0 in the scene file.
+  const Eigen::Vector3d shift(-box.center().x() + 0.0, -box.center().y() + 0.0, -box.min().z() + 0.0);
+  const Eigen::AlignedBox3d placed(box.min() + shift, box.max() + shift);
+  // As a stage's `grid`: at most kMaxGridCells each way (the reach check
+  // visits every cell).
+  const double cells_x = std::max(1.0, std::ceil(placed.sizes().x() / o.cell_mm));
+  const double cells_y = std::max(1.0, std::ceil(placed.sizes().y() / o.cell_mm));
+  if (!(cells_x <= kMaxGridCells && cells_y <= kMaxGridCells))
+    throw InputError("--cell-mm " + num(o.cell_mm) + ": a grid of " + num(cells_x) + " x " + num(cells_y) +
+                     " cells over the " + num(placed.sizes().x()) + " x " + num(placed.sizes().y()) +
+                     " mm footprint; the grid must be in [1, " + std::to_string(kMaxGridCells) +
+                     "] cells each way (--cell-mm " + num(smallest_cell_mm(placed.sizes().head<2>().maxCoeff())) +
+                     " or more)");
+  const int gx = static_cast<int>(cells_x), gy = static_cast<int>(cells_y);
+
+  const fs::path folder = o.out / o.name;
+  ObjectSpec spec;
+  spec.kind = ObjectKind::Mesh;
+  spec.mesh = o.mesh;
+  spec.scale = o.scale;
+  spec.base_from_object = Eigen::Translation3d(shift);
+  const scoring::TriangleMesh mesh = read_placed_object_mesh(spec);
+  const double area = scoring::surface_area_mm2(mesh);
+  if (!(area > 0)) throw InputError(o.mesh.string() + ": the mesh has no surface area");
+  const auto count = static_cast<std::size_t>(std::max(1000.0, std::round(area * kGroundTruthPointsPerMm2)));
+  PointCloud truth;
+  for (const auto& p : scoring::sample_surface(mesh, count, kGroundTruthSeed, 1))
+    truth.push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
+  const std::vector<std::string> problems = check_fit(spec, placed, gx, gy);
+
+  // Everything is computed before the first file is written.
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw InputError("cannot create the output folder " + folder.string() + ": " + ec.message());
+  const fs::path mesh_copy = folder / o.mesh.filename();
+  if (fs::absolute(mesh_copy).lexically_normal() != fs::absolute(o.mesh).lexically_normal())
+    fs::copy_file(o.mesh, mesh_copy, fs::copy_options::overwrite_existing);
+  write_file(folder / "scene.yaml", scene_yaml(o, shift, placed, gx, gy));
+  write_cloud_file(folder / "ground_truth.pcd", truth, true);
+  std::cout << "wrote " << folder.string() << "/: scene.yaml, " << o.mesh.filename().string()
+            << ", ground_truth.pcd (" << truth.size() << " points); object " << placed.sizes().x() << " x "
+            << placed.sizes().y() << " x " << placed.sizes().z() << " mm, grid " << gx << " x " << gy << "\n";
+  for (const auto& p : problems) std::cerr << "warning: " << p << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ignore_file_size_signal();  // a file-size limit fails a write as a full disk does
+  CLI::App app{"From a mesh to a scene and its ground truth: DIR/NAME/{scene.yaml, mesh, ground_truth.pcd}"};
+  Options o;
+  app.add_option("mesh", o.mesh, "the object's mesh (.stl, .obj, .ply with faces)")->required();
+  app.add_option("--name", o.name, "the object's name: the folder and the scene's name")->required();
+  app.add_option("--scale", o.scale, "mesh units to mm (1000 for a mesh in metres)")->check(CLI::PositiveNumber);
+  app.add_option("--out", o.out, "where the object's folder goes (default: sample_clouds)");
+  app.add_option("--cell-mm", o.cell_mm, "grid cell size over the footprint (default 8.6, the fox mask's)")
+      ->check(CLI::PositiveNumber);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    return make_scene(o);
+  } catch (const InputError& e) {
+    std::cerr << "touchcloud-make-scene: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "touchcloud-make-scene: error: " << e.what() << "\n";
+    return 1;
+  }
+}

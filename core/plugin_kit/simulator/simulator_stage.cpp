@@ -1,4 +1,4 @@
-#include "touchcloud/simulation/stage/simulator_stage.hpp"
+#include "touchcloud/plugin_kit/simulator_stage.hpp"
 
 #include <sstream>
 

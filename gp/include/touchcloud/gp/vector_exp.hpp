@@ -4,7 +4,7 @@
 // the reference machine; with SLEEF (Debian: libsleef-dev) on a CPU with AVX2
 // and FMA its four-wide exp is about 3.5x faster. SLEEF's eight-wide AVX-512
 // exp gives the same bits and is 1.8x faster again alone, but made no
-// measurable difference to the fits (bench_gp, stop 39), so exp stays at
+// measurable difference to the fits (bench_gp), so exp stays at
 // AVX2. Both are accurate to about one unit in the last place; below -745
 // the result is 0, above 709.7 infinity, and a NaN stays NaN.
 #pragma once

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# The product speaks to users, not of how it was developed: no "stop 36",
-# "the idle machine" or "this stop" outside CHANGELOG.md, where history lives.
+# The product speaks to users, not of how it was developed: no numbered
+# development stops and no remarks on how loaded a machine was, outside
+# CHANGELOG.md, where history lives ("[ ]" keeps this file from matching its
+# own pattern).
 # Usage: no_lab_notebook.sh SOURCE_DIR
 set -euo pipefail
 src=${1:?usage: no_lab_notebook.sh SOURCE_DIR}
-pattern='stop [0-9]+|idle machine|busy machine|this stop'
+pattern='stop [0-9]+|idle[ ]machine|busy[ ]machine|this[ ]stop'
 cd "$src"
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1 && [ "$(git rev-parse --show-toplevel)" = "$(pwd -P)" ]; then
   hits=$(git grep -n -I -iE "$pattern" -- . ':!CHANGELOG.md' || true)

@@ -47,7 +47,7 @@ function(touchcloud_check_plugin_links plugins_dir)
   if(problems)
     message(FATAL_ERROR "touchcloud: a plugin folder's library is linked from outside that folder:${problems}\n"
       "Code that more than one target uses belongs in a library (core/sensing, imaging, calibration, "
-      "learning, ...), never in a plugin folder (README, 'Writing a plugin').")
+      "learning, ...), never in a plugin folder (docs/writing-a-plugin.md).")
   endif()
 endfunction()
 

@@ -1,12 +1,12 @@
 #!/usr/bin/python3
-"""Writes the README's table of the main job's metrics from what the plugins
+"""Writes the first-run page's table of the main job's metrics from what the plugins
 declare (`touchcloud plugins NAME --json`): each key's unit, when it is
 reported, which way is better, its role and its one-line doc. The keys are
 chosen here; their stages' plugins are read from the main job's pipeline.
 
   scripts/metric_table.py              # print the table
-  scripts/metric_table.py --write      # put it into README.md between its markers
-  scripts/metric_table.py --check      # exit 1 when README.md's table differs
+  scripts/metric_table.py --write      # put it into docs/first-run.md between its markers
+  scripts/metric_table.py --check      # exit 1 when docs/first-run.md's table differs
 """
 import argparse
 import json
@@ -56,10 +56,10 @@ def table(cli):
     return "\n".join(rows) + "\n"
 
 
-def with_table(readme, text):
-    if readme.count(BEGIN) != 1 or readme.count(END) != 1:
-        sys.exit(f"metric_table: the README needs one '{BEGIN}' and one '{END}' line")
-    head, rest = readme.split(BEGIN + "\n", 1)
+def with_table(page, text):
+    if page.count(BEGIN) != 1 or page.count(END) != 1:
+        sys.exit(f"metric_table: the page needs one '{BEGIN}' and one '{END}' line")
+    head, rest = page.split(BEGIN + "\n", 1)
     _, tail = rest.split(END, 1)
     return head + BEGIN + "\n" + text + END + tail
 
@@ -67,24 +67,24 @@ def with_table(readme, text):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cli", default=str(SOURCE / "build/bin/touchcloud"), help="the touchcloud CLI")
-    ap.add_argument("--readme", default=str(SOURCE / "README.md"))
+    ap.add_argument("--page", default=str(SOURCE / "docs/first-run.md"), help="the guide page that holds the table")
     mode = ap.add_mutually_exclusive_group()
-    mode.add_argument("--write", action="store_true", help="rewrite the README's table")
-    mode.add_argument("--check", action="store_true", help="exit 1 when the README's table differs")
+    mode.add_argument("--write", action="store_true", help="rewrite the page's table")
+    mode.add_argument("--check", action="store_true", help="exit 1 when the page's table differs")
     args = ap.parse_args()
     text = table(args.cli)
     if not (args.write or args.check):
         sys.stdout.write(text)
         return
-    readme = pathlib.Path(args.readme)
-    old = readme.read_text()
+    page = pathlib.Path(args.page)
+    old = page.read_text()
     new = with_table(old, text)
     if args.check:
         if new != old:
-            sys.exit(f"metric_table: {readme}'s metric table differs from the declarations; "
+            sys.exit(f"metric_table: {page}'s metric table differs from the declarations; "
                      "run scripts/metric_table.py --write")
         return
-    readme.write_text(new)
+    page.write_text(new)
 
 
 if __name__ == "__main__":

@@ -65,7 +65,7 @@ class MarkerDetection final : public Stage {
     p.add("min_quality", min_quality_, d.min_quality)
         .range(0, 1)
         .doc("markers of lower quality are dropped; quality = contrast x shape x completeness, each in [0, 1] "
-             "(README, marker_detection)");
+             "(docs/sensors/marker-gelstereo.md)");
   }
 
   void declare_ports(PortSet& ports) override {

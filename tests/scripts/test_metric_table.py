@@ -1,4 +1,4 @@
-"""scripts/metric_table.py: the README's metric table is what the plugins
+"""scripts/metric_table.py: the first-run page's metric table is what the plugins
 declare, and a table that differs is caught."""
 import json
 import os
@@ -16,8 +16,8 @@ def table_script(*args):
                           text=True, timeout=120)
 
 
-def test_the_readmes_metric_table_is_the_declarations():
-    r = table_script("--check", "--readme", SOURCE / "README.md")
+def test_the_first_run_pages_metric_table_is_the_declarations():
+    r = table_script("--check", "--page", SOURCE / "docs/first-run.md")
     assert r.returncode == 0, r.stderr
 
 
@@ -33,12 +33,12 @@ def test_rows_come_from_the_plugins_declarations():
 
 
 def test_a_table_that_differs_is_caught_and_rewritten(tmp_path):
-    readme = tmp_path / "README.md"
-    text = (SOURCE / "README.md").read_text()
+    page = tmp_path / "first-run.md"
+    text = (SOURCE / "docs/first-run.md").read_text()
     stale = text.replace("| `score.final_chamfer_mm` | mm |", "| `score.final_chamfer_mm` | cm |")
     assert stale != text
-    readme.write_text(stale)
-    r = table_script("--check", "--readme", readme)
+    page.write_text(stale)
+    r = table_script("--check", "--page", page)
     assert r.returncode == 1 and "differs from the declarations" in r.stderr, r.stderr
-    assert table_script("--write", "--readme", readme).returncode == 0
-    assert readme.read_text() == text
+    assert table_script("--write", "--page", page).returncode == 0
+    assert page.read_text() == text

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Assembles the user guide's sources for MkDocs: the pages under docs/, the
+generated plugin pages (plugins/NAME.md, scripts/plugin_pages.py), the
 benchmark tables (each benchmarks/NAME/README.md with the tables and figures
 beside it, as tables/NAME/), and a MkDocs configuration whose nav lists them.
 
-  scripts/docs_site.py --out build/docs-src --site build/docs   # writes build/docs-src/mkdocs.yml
+  scripts/docs_site.py --out DIR --site build/docs [--plugin-pages P --extra-nav NAV]   # writes DIR/mkdocs.yml
 """
 import argparse
 import pathlib
@@ -37,12 +38,19 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", required=True, help="folder for the assembled sources (emptied first)")
     ap.add_argument("--site", required=True, help="where mkdocs writes the site")
+    ap.add_argument("--plugin-pages", help="a folder of generated plugin pages, copied into plugins/")
     ap.add_argument("--extra-nav", help="a YAML file: a list of nav entries for the Plugins section")
     args = ap.parse_args()
     out = pathlib.Path(args.out).resolve()
     if out.exists():
         shutil.rmtree(out)
     shutil.copytree(SOURCE / "docs", out / "docs")
+    if args.plugin_pages:
+        for page in sorted(pathlib.Path(args.plugin_pages).glob("*.md")):
+            dest = out / "docs/plugins" / page.name
+            if dest.exists():
+                sys.exit(f"docs_site: docs/plugins/{page.name} is generated; remove the committed one")
+            shutil.copyfile(page, dest)
     tables = copy_tables(out / "docs")
     config = yaml.safe_load((SOURCE / "mkdocs.yml").read_text())
     config["docs_dir"] = str(out / "docs")

@@ -62,15 +62,17 @@
 #include "touchcloud/gp/matern_sums.hpp"
 #include "touchcloud/gp/marginal_likelihood.hpp"
 #include "touchcloud/gp/vector_exp.hpp"
-#include "footprint_choice.hpp"
-#include "touch_choice.hpp"
+#include "touchcloud/planning/footprint_choice.hpp"
+#include "touchcloud/planning/touch_choice.hpp"
 #include "touchcloud/blas_environment.hpp"
+#include "touchcloud/planning/footprint_choice.hpp"
+#include "touchcloud/planning/touch_choice.hpp"
 
 namespace {
 
 using namespace touchcloud;
 using namespace touchcloud::gp;
-using namespace touchcloud::next_touch;
+using namespace touchcloud::planning;
 
 constexpr Eigen::Index kTrainingPoints = 2000;
 constexpr Eigen::Index kTouchPoints = 60;

@@ -10,7 +10,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "matcher/disparity_matcher.hpp"
+#include "touchcloud/imaging/disparity_matcher.hpp"
 #include "touchcloud/learning/gs_depthnet.hpp"
 #include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/torch_io.hpp"
@@ -59,12 +59,12 @@ BENCHMARK(GsDepthNetInference)->ArgNames({"threads", "width"})->Args({1, 8})->Ar
 
 void SgbmBeside(benchmark::State& state) {
   cv::setNumThreads(static_cast<int>(state.range(0)));
-  touchcloud::stereo_disparity::MatcherOptions o;
-  o.method = touchcloud::stereo_disparity::MatchMethod::SemiGlobal;
+  touchcloud::imaging::MatcherOptions o;
+  o.method = touchcloud::imaging::MatchMethod::SemiGlobal;
   o.block_size_px = 7;
   o.min_disparity_px = 52;
   o.num_disparities = 32;
-  touchcloud::stereo_disparity::DisparityMatcher matcher(o);
+  touchcloud::imaging::DisparityMatcher matcher(o);
   const Pair p = pattern_pair();
   for (auto _ : state) {
     auto d = matcher.match(p.left, p.right, "bench");

@@ -7,7 +7,7 @@
 // whose dot lies fully in the image), mean centre error and false detections
 // over all four images.
 //
-//   Detector            one image, touchcloud_marker_detection_lib
+//   Detector            one image, touchcloud::imaging
 //   SimpleBlobDetector  one image, cv::SimpleBlobDetector
 //   DetectorStereoFrame both images of a frame, input checks included
 //
@@ -29,11 +29,12 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
-#include "detector/stereo_markers.hpp"
 #include "realistic_markers.hpp"
 #include "rendered_markers.hpp"
+#include "touchcloud/imaging/stereo_markers.hpp"
 
 using namespace touchcloud;
+using namespace touchcloud::imaging;
 using touchcloud::test::DetectionScore;
 
 namespace {

@@ -6,9 +6,9 @@
 //   build/benchmarks/bin/bench_photometric_depth
 #include <benchmark/benchmark.h>
 
-#include "touchcloud/simulation/gelsight_simulation.hpp"
-#include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
+#include "touchcloud/simulation/gelsight_simulation.hpp"
 
 using namespace touchcloud;
 
@@ -33,9 +33,9 @@ const Press& ball_press() {
 void BM_PhotometricDepth(benchmark::State& state) {
   const auto calibration = sensor::load_photometric_calibration(
       std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
-  photometric::DepthOptions options;
-  options.border = state.range(0) ? photometric::PoissonBorder::Free : photometric::PoissonBorder::Zero;
-  photometric::PhotometricDepthSolver solver(calibration, options);
+  imaging::DepthOptions options;
+  options.border = state.range(0) ? imaging::PoissonBorder::Free : imaging::PoissonBorder::Zero;
+  imaging::PhotometricDepthSolver solver(calibration, options);
   const Press& press = ball_press();
   for (auto _ : state) {
     auto result = solver.solve(press.image, press.reference);
@@ -46,14 +46,14 @@ void BM_PhotometricDepth(benchmark::State& state) {
 BENCHMARK(BM_PhotometricDepth)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_DstPoissonOnly(benchmark::State& state) {
-  photometric::DstPoisson poisson(320, 240);
+  imaging::DstPoisson poisson(320, 240);
   const cv::Mat p = cv::Mat::ones(240, 319, CV_64FC1) * 0.01, q = cv::Mat::ones(239, 320, CV_64FC1) * 0.01;
   for (auto _ : state) benchmark::DoNotOptimize(poisson.solve(p, q).data);
 }
 BENCHMARK(BM_DstPoissonOnly)->Unit(benchmark::kMillisecond);
 
 void BM_DctPoissonOnly(benchmark::State& state) {
-  photometric::DctPoisson poisson(320, 240);
+  imaging::DctPoisson poisson(320, 240);
   const cv::Mat p = cv::Mat::ones(240, 319, CV_64FC1) * 0.01, q = cv::Mat::ones(239, 320, CV_64FC1) * 0.01;
   for (auto _ : state) benchmark::DoNotOptimize(poisson.solve(p, q).data);
 }

@@ -13,13 +13,14 @@
 
 #include <opencv2/core.hpp>
 
-#include "detector/stereo_markers.hpp"
-#include "marker_triangulator.hpp"
-#include "stereo_tracker.hpp"
-#include "touchcloud/simulation/gelstereo_simulation.hpp"
+#include "touchcloud/imaging/stereo_markers.hpp"
+#include "touchcloud/markers/marker_triangulator.hpp"
+#include "touchcloud/markers/stereo_tracker.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 
 using namespace touchcloud;
+using namespace touchcloud::imaging;
 
 namespace {
 
@@ -58,9 +59,9 @@ void SensingChainPerFrame(benchmark::State& state) {
   const sensor::GelStereoSensor& sensor = scene().sensor;
   const optics::StereoRig rig = sensor::make_stereo_rig(sensor, true, false);
   StereoMarkerDetector detector{MarkerDetectorOptions{}};
-  marker_matching::StereoMarkerTracker tracker(
-      marker_matching::RestingGelMatcher(rig, sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()), {});
-  rsrt_triangulation::MarkerTriangulator triangulator(rig, sensor.sensor_from_left_camera(), true, 0.5);
+  markers::StereoMarkerTracker tracker(
+      markers::RestingGelMatcher(rig, sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()), {});
+  markers::MarkerTriangulator triangulator(rig, sensor.sensor_from_left_camera(), true, 0.5);
   // The reference frame, outside the timing.
   triangulator.triangulate(tracker.process(detector.detect(frames.front())));
 

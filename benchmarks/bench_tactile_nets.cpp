@@ -7,12 +7,12 @@
 //   build/benchmarks/bin/bench_tactile_nets --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
-#include "touchcloud/simulation/gelsight_simulation.hpp"
-#include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/learning/host_memory.hpp"
 #include "touchcloud/learning/tactile_nets.hpp"
 #include "touchcloud/learning/torch_io.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
+#include "touchcloud/simulation/gelsight_simulation.hpp"
 
 using namespace touchcloud;
 namespace lrn = touchcloud::learning;
@@ -75,9 +75,9 @@ BENCHMARK(TactileNetsInference)->ArgNames({"threads", "contact_width", "depth_wi
 void PhotometricDepthBeside(benchmark::State& state) {
   const auto calibration = sensor::load_photometric_calibration(
       std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
-  photometric::DepthOptions options;
-  options.border = state.range(0) ? photometric::PoissonBorder::Free : photometric::PoissonBorder::Zero;
-  photometric::PhotometricDepthSolver solver(calibration, options);
+  imaging::DepthOptions options;
+  options.border = state.range(0) ? imaging::PoissonBorder::Free : imaging::PoissonBorder::Zero;
+  imaging::PhotometricDepthSolver solver(calibration, options);
   const Press& press = ball_press();
   for (auto _ : state) {
     auto result = solver.solve(press.image, press.reference);

@@ -6,7 +6,7 @@
 #   CLI11       the touchcloud command line
 #   nlohmann_json  summary.json and --json output
 #   nanoflann   KD-tree over marker pixels (stereo matching and tracking)
-#   OpenCV, Ceres, FLANN: looked up by the plugins that need them
+#   OpenCV, Ceres, FFTW: looked up by the libraries and plugins that need them
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 # PCL pulls in VTK, whose MPI target needs the C language enabled (project()).
 find_package(PCL 1.10 REQUIRED COMPONENTS common io kdtree filters)

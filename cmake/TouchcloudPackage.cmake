@@ -2,12 +2,17 @@
 # find_package(touchcloud).
 include(CMakePackageConfigHelpers)
 
-install(TARGETS touchcloud_core touchcloud_sensing touchcloud_simulation touchcloud_cli EXPORT touchcloudTargets
+# The libraries outside core/ and simulation/ (imaging/, calibration/, gp/)
+# add themselves to touchcloudTargets where they are defined.
+install(TARGETS touchcloud_base touchcloud_core touchcloud_sensing touchcloud_plugin_kit touchcloud_simulation
+                touchcloud_cli
+        EXPORT touchcloudTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY core/include/touchcloud core/sensing/include/touchcloud simulation/include/touchcloud
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY core/base/include/touchcloud core/include/touchcloud core/sensing/include/touchcloud
+                  core/plugin_kit/include/touchcloud simulation/include/touchcloud
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.in" EXCLUDE)
 install(FILES ${PROJECT_BINARY_DIR}/include/touchcloud/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/touchcloud)
 install(EXPORT touchcloudTargets NAMESPACE touchcloud::

@@ -7,7 +7,9 @@
 # Builds touchcloud_<NAME>.so as a MODULE library, the file name the plugin
 # loader looks for. The plugin's name in pipelines is NAME; the source must
 # declare it with TOUCHCLOUD_PLUGIN(Class, "NAME", "one-line description").
-# Works in this tree and, after find_package(touchcloud), out of tree.
+# It links the runtime (touchcloud::core), the sensing library and the
+# parameter groups that stages share (touchcloud::plugin_kit). Works in this
+# tree and, after find_package(touchcloud), out of tree.
 function(touchcloud_add_plugin name)
   cmake_parse_arguments(ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES;LINK" ${ARGN})
   if(NOT ARG_SOURCES)
@@ -18,7 +20,7 @@ function(touchcloud_add_plugin name)
   endif()
   set(target touchcloud_${name})
   add_library(${target} MODULE ${ARG_SOURCES})
-  target_link_libraries(${target} PRIVATE touchcloud::sensing ${ARG_LINK})
+  target_link_libraries(${target} PRIVATE touchcloud::core touchcloud::sensing touchcloud::plugin_kit ${ARG_LINK})
   set_target_properties(${target} PROPERTIES PREFIX "" CXX_VISIBILITY_PRESET hidden
                         VISIBILITY_INLINES_HIDDEN ON)
   if(ARG_OUTPUT_DIRECTORY)

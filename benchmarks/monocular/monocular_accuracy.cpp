@@ -32,10 +32,10 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "touchcloud/simulation/gelsight_simulation.hpp"
-#include "gradients/photometric_depth_solver.hpp"
 #include "touchcloud/file_write.hpp"
+#include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
+#include "touchcloud/simulation/gelsight_simulation.hpp"
 #ifdef TOUCHCLOUD_WITH_NETWORKS
 #include "touchcloud/learning/tactile_net_pair.hpp"
 #endif
@@ -156,12 +156,12 @@ std::string case_rows(const Case& c, const Setup& setup) {
     table << "| " << c.name << " | " << c.press_mm << " | " << s.contact_px << " | " << method << " | " << s.rmse
           << " | " << s.max_error << " | " << s.iou << " | " << s.f1 << " |\n";
   };
-  for (auto border : {photometric::PoissonBorder::Zero, photometric::PoissonBorder::Free}) {
-    photometric::DepthOptions options;
+  for (auto border : {imaging::PoissonBorder::Zero, imaging::PoissonBorder::Free}) {
+    imaging::DepthOptions options;
     options.border = border;
-    photometric::PhotometricDepthSolver solver(setup.calibration, options);
-    const photometric::DepthResult r = solver.solve(image, reference);
-    row(border == photometric::PoissonBorder::Zero ? "classical, zero border" : "classical, free border",
+    imaging::PhotometricDepthSolver solver(setup.calibration, options);
+    const imaging::DepthResult r = solver.solve(image, reference);
+    row(border == imaging::PoissonBorder::Zero ? "classical, zero border" : "classical, free border",
         score(r.height_mm, r.contact_mask, truth));
   }
 #ifdef TOUCHCLOUD_WITH_NETWORKS

@@ -43,7 +43,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from mpi_launch import launched_ranks, mpirun_command  # noqa: E402
 
 # The methods of Table 1 as overrides of the "Ours" pipelines, then the
-# next-touch strategies beside Eq. 10 (plugins/next_touch: footprint_choice.hpp,
+# next-touch strategies beside Eq. 10 (touchcloud/planning/: footprint_choice.hpp,
 # space_filling.hpp) and the Matern 5/2 kernel, which keeps sharp features
 # that the RBF rings at:
 #   SF   plan.start=space_filling: the 4 first touches at k-means centroids

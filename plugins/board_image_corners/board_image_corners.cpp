@@ -5,8 +5,8 @@
 // should not quietly use fewer views than the user took.
 #include <sstream>
 
-#include "detection/chessboard_corners.hpp"
-#include "detection/image_pairs.hpp"
+#include "image_pairs.hpp"
+#include "touchcloud/imaging/chessboard_corners.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/board_views.hpp"
 
@@ -17,7 +17,7 @@ namespace bic = board_image_corners;
 class BoardImageCorners final : public Stage {
   std::string left_, right_;
   std::array<int, 2> board_corners_{};
-  bic::CornerSearch search_;
+  imaging::CornerSearch search_;
 
   sensor::Checkerboard board_;
   std::vector<bic::ImagePair> pairs_;  // listed at check
@@ -28,8 +28,8 @@ class BoardImageCorners final : public Stage {
     p.add("right", right_, std::string()).input_file().doc("right images, numbered as the left ones");
     p.add("board_corners", board_corners_, std::array<int, 2>{9, 6}).range(2, 100)
         .doc("inner corners of the board [cols, rows], cols + rows odd; corner id = row * cols + col");
-    p.add("detector", search_.detector, bic::ChessboardDetector::Classic,
-          {{"classic", bic::ChessboardDetector::Classic}, {"sector_based", bic::ChessboardDetector::SectorBased}})
+    p.add("detector", search_.detector, imaging::ChessboardDetector::Classic,
+          {{"classic", imaging::ChessboardDetector::Classic}, {"sector_based", imaging::ChessboardDetector::SectorBased}})
         .doc("cv::findChessboardCorners (classic) or cv::findChessboardCornersSB; both refined by cv::cornerSubPix");
     p.add("refine_half_window_px", search_.refine_half_window_px, 5).range(2, 50).unit("px")
         .doc("half window of the sub-pixel refinement; keep it below half a square's edge in the image");
@@ -43,7 +43,7 @@ class BoardImageCorners final : public Stage {
   void on_check(RunContext&) override {
     try {
       board_ = sensor::Checkerboard::from_parameters(board_corners_, 1.0);  // the square's size plays no part here
-      bic::require_oriented_board(board_);
+      imaging::require_oriented_board(board_);
     } catch (const InputError& e) {
       throw ParameterError("board_corners", e.what());
     }
@@ -74,7 +74,7 @@ class BoardImageCorners final : public Stage {
       auto set = std::make_shared<MarkerSet>();
       for (const auto& [image, file, markers] :
            {std::tuple{&left, &pair.left, &set->left}, std::tuple{&right, &pair.right, &set->right}}) {
-        const auto corners = bic::find_board_corners(*image, board_, search_);
+        const auto corners = imaging::find_board_corners(*image, board_, search_);
         if (!corners)
           throw InputError("image " + file->string() + ": no " + std::to_string(board_.cols) + " x " +
                            std::to_string(board_.rows) + " checkerboard found (every inner corner must be in view, "

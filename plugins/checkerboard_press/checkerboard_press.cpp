@@ -7,7 +7,7 @@
 
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/plugin_kit/sensor_parameters.hpp"
 #include "touchcloud/simulation/board/board_press.hpp"
 
 namespace touchcloud {

@@ -10,7 +10,7 @@
 
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/simulation/stage/simulator_stage.hpp"
+#include "touchcloud/plugin_kit/simulator_stage.hpp"
 #include "touchcloud/types/colour_stereo_frame.hpp"
 #include "touchcloud/types/dense_maps.hpp"
 

@@ -6,7 +6,7 @@
 // holes closed. The algorithm is region/contact_region.hpp.
 #include <opencv2/core/version.hpp>
 
-#include "region/contact_region.hpp"
+#include "touchcloud/imaging/contact_region.hpp"
 
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
@@ -23,7 +23,7 @@ std::string size_text(const cv::Mat& m) { return std::to_string(m.cols) + " x " 
 }  // namespace
 
 class ContactMask final : public Stage {
-  contact_mask::ContactRegionOptions o_;
+  imaging::ContactRegionOptions o_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("threshold_grey", o_.threshold_grey, 5.0)
@@ -66,7 +66,7 @@ class ContactMask final : public Stage {
       throw InputError("input 'frame': the left image (" + size_text(frame->left) + " px, " +
                        cv::typeToString(frame->left.type()) + ") differs in size or type from input 'reference''s (" +
                        size_text(reference->left) + " px, " + cv::typeToString(reference->left.type()) + ")");
-    const cv::Mat mask = contact_mask::contact_region(frame->left, reference->left, o_);
+    const cv::Mat mask = imaging::contact_region(frame->left, reference->left, o_);
     auto maps = std::make_shared<DenseMaps>();
     maps->contact_mask = mask;
     maps->camera = frame->camera;

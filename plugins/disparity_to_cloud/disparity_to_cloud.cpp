@@ -8,7 +8,7 @@
 #include "conversion/disparity_conversion.hpp"
 #include "touchcloud/parallel_ranges.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/plugin_kit/sensor_parameters.hpp"
 #include "touchcloud/types/dense_maps.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"
 

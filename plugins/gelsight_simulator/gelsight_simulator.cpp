@@ -13,7 +13,7 @@
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/simulation/gelsight_simulation.hpp"
-#include "touchcloud/simulation/stage/simulator_stage.hpp"
+#include "touchcloud/plugin_kit/simulator_stage.hpp"
 #include "touchcloud/types/height_map.hpp"
 #include "touchcloud/types/mono_colour_frame.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"

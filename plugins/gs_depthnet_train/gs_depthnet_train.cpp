@@ -9,8 +9,9 @@
 #include <cmath>
 #include <optional>
 
-#include "matcher/disparity_matcher.hpp"
-#include "region/contact_region.hpp"
+#include "touchcloud/file_write.hpp"
+#include "touchcloud/imaging/contact_region.hpp"
+#include "touchcloud/imaging/disparity_matcher.hpp"
 #include "touchcloud/learning/checkpoint.hpp"
 #include "touchcloud/learning/gs_depthnet.hpp"
 #include "touchcloud/learning/host_memory.hpp"
@@ -19,7 +20,6 @@
 #include "touchcloud/learning/stereo_samples.hpp"
 #include "touchcloud/learning/torch_io.hpp"
 #include "touchcloud/learning/training_loop.hpp"
-#include "touchcloud/file_write.hpp"
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
 
@@ -41,8 +41,8 @@ class GsDepthNetTrain final : public Stage {
   enum class ContactMasks { RestPair, Dataset };
   ContactMasks contact_masks_ = ContactMasks::RestPair;
   bool save_optimizer_ = true;
-  contact_mask::ContactRegionOptions contact_;
-  stereo_disparity::MatcherOptions reference_matcher_;
+  imaging::ContactRegionOptions contact_;
+  imaging::MatcherOptions reference_matcher_;
   // Read at check.
   std::vector<lrn::StereoSample> samples_;
   std::optional<lrn::StereoSample> rest_pair_;
@@ -172,7 +172,7 @@ class GsDepthNetTrain final : public Stage {
         throw ParameterError("resume_from", e.what());
       }
     }
-    reference_matcher_.method = stereo_disparity::MatchMethod::SemiGlobal;
+    reference_matcher_.method = imaging::MatchMethod::SemiGlobal;
     reference_matcher_.full_width = true;  // the gel reaches the image's first columns
     reference_matcher_.validate();
     if (!resume_ && !rest_index_)
@@ -206,7 +206,7 @@ class GsDepthNetTrain final : public Stage {
   // (rest_index's first row), filtered and filled. No ground truth.
   lrn::ReferenceDisparity measure_reference(RunContext& ctx) const {
     const lrn::StereoSample& pair = *rest_pair_;
-    const auto d = stereo_disparity::DisparityMatcher(reference_matcher_).match(pair.left, pair.right, pair.where);
+    const auto d = imaging::DisparityMatcher(reference_matcher_).match(pair.left, pair.right, pair.where);
     auto r = lrn::reference_from_rest(d.left_px, d.valid_left, d.right_px, d.valid_right, pair.where);
     double lo = 0, hi = 0;
     cv::minMaxLoc(r.left_px, &lo, &hi, nullptr, nullptr, r.gel_left);
@@ -232,7 +232,7 @@ class GsDepthNetTrain final : public Stage {
       if (!rest_pair_)
         throw ParameterError("contact_masks", "rest_pair needs rest_index (a resumed training reads no rest pair): "
                                               "set rest_index, or contact_masks: dataset");
-      const cv::Mat mask = contact_mask::contact_region(s.left, rest_pair_->left, contact_);
+      const cv::Mat mask = imaging::contact_region(s.left, rest_pair_->left, contact_);
       const double share = 100.0 * cv::countNonZero(mask) / static_cast<double>(mask.total());
       lo = std::min(lo, share), hi = std::max(hi, share);
       if (!s.contact_mask.empty()) {  // a row's own mask (a label, or the simulator's truth): how they agree

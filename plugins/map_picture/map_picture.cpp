@@ -9,8 +9,8 @@
 
 #include <opencv2/core/version.hpp>
 
-#include "picture/map_pair.hpp"
-#include "picture/picture_file.hpp"
+#include "touchcloud/imaging/map_pair.hpp"
+#include "touchcloud/imaging/picture_file.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/plugin.hpp"
@@ -34,7 +34,7 @@ class MapPicture final : public Stage {
         .doc("the picture in the output folder (.png or .jpg); {iteration} for one per loop iteration");
     p.add("colour_range", range_)
         .doc("[low, high] of the colour scale, in the maps' unit (px or mm); not set: the truth's valid values' range");
-    p.rule({"path"}, [this] { return picture::picture_path_problem(path_); });
+    p.rule({"path"}, [this] { return imaging::picture_path_problem(path_); });
     p.rule({"colour_range"}, [this]() -> std::optional<std::string> {
       if (range_ && !((*range_)[1] > (*range_)[0])) return "colour_range must be [low, high] with high > low";
       return std::nullopt;
@@ -50,7 +50,7 @@ class MapPicture final : public Stage {
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
-    picture::MapView estimate, truth;
+    imaging::MapView estimate, truth;
     std::string unit, quantity;
     if (const auto* d = io.optional_input<DenseMapsPtr>("disparity")) {
       const auto* t = io.optional_input<DenseMapsPtr>("disparity_truth");
@@ -69,10 +69,10 @@ class MapPicture final : public Stage {
       unit = "mm", quantity = "Height";
     }
     estimate.contact_mask = truth.contact_mask;  // where the contact truly is, on both
-    const picture::ColourScale scale =
-        range_ ? picture::ColourScale{(*range_)[0], (*range_)[1], unit} : picture::scale_of(truth, unit);
+    const imaging::ColourScale scale =
+        range_ ? imaging::ColourScale{(*range_)[0], (*range_)[1], unit} : imaging::scale_of(truth, unit);
     const std::string path = ctx.with_iteration(path_);
-    picture::write_picture(ctx, path, picture::draw_map_pair(estimate, truth, scale));
+    imaging::write_picture(ctx.output_path(path), imaging::draw_map_pair(estimate, truth, scale));
     ctx.artifact(ArtifactRole::image, path,
                  {{"caption", quantity + " (" + unit + ") estimated (left) beside the ground truth (right), on one "
                               "colour scale from " + rounded(scale.low) + " to " + rounded(scale.high) + " " + unit +

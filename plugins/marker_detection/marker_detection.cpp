@@ -3,13 +3,19 @@
 // matching to a later stage. The detector itself is detector/marker_detector.hpp.
 #include <optional>
 
-#include "detector/stereo_markers.hpp"
+#include "touchcloud/imaging/stereo_markers.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/camera_image.hpp"
 #include <opencv2/core/version.hpp>
 #include "touchcloud/library_versions.hpp"
 
 namespace touchcloud {
+
+using imaging::BorderDots;
+using imaging::MarkerDetector;
+using imaging::MarkerDetectorOptions;
+using imaging::MarkerPolarity;
+using imaging::StereoMarkerDetector;
 
 // Recorded in summary.json's versions when this plugin is loaded.
 namespace {

@@ -8,7 +8,7 @@
 
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/simulation/stage/simulator_stage.hpp"
+#include "touchcloud/plugin_kit/simulator_stage.hpp"
 #include "touchcloud/types/marker_set.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 

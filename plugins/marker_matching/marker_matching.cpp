@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <limits>
 
-#include "stereo_tracker.hpp"
+#include "touchcloud/markers/stereo_tracker.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/plugin_kit/sensor_parameters.hpp"
 
 namespace touchcloud {
 
 class MarkerMatching final : public Stage {
   sensor::SensorParameters sensor_;
-  marker_matching::TrackerGates gates_;
+  markers::TrackerGates gates_;
   sensor::GelStereoSensor sensor_read_;  // read at check
 
-  std::unique_ptr<marker_matching::StereoMarkerTracker> tracker_;
+  std::unique_ptr<markers::StereoMarkerTracker> tracker_;
   std::size_t frames_ = 0;
   std::size_t fewest_matched_ = std::numeric_limits<std::size_t>::max();
   double matched_sum_ = 0, left_only_sum_ = 0, right_only_sum_ = 0;
@@ -46,8 +46,8 @@ class MarkerMatching final : public Stage {
 
   void on_configure(RunContext&) override {
     const auto& sensor = sensor_read_;
-    tracker_ = std::make_unique<marker_matching::StereoMarkerTracker>(
-        marker_matching::RestingGelMatcher(sensor_.rig(sensor, true),
+    tracker_ = std::make_unique<markers::StereoMarkerTracker>(
+        markers::RestingGelMatcher(sensor_.rig(sensor, true),
                                     sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm()),
         gates_);
   }

@@ -6,8 +6,8 @@
 // (its artifact's attribute) that the run's report shows beneath it.
 #include <opencv2/core/version.hpp>
 
-#include "drawing/marker_pair.hpp"
-#include "picture/picture_file.hpp"
+#include "touchcloud/imaging/marker_pair.hpp"
+#include "touchcloud/imaging/picture_file.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/marker_set.hpp"
@@ -31,7 +31,7 @@ class MarkerPicture final : public Stage {
     p.add("match_lines", match_lines_, 40).range(0, 1000000).unit("lines")
         .doc("matches joined by lines across the pair (evenly spread over them); the other matched markers are "
              "green circles");
-    p.rule({"path"}, [this] { return picture::picture_path_problem(path_); });
+    p.rule({"path"}, [this] { return imaging::picture_path_problem(path_); });
   }
 
   void declare_ports(PortSet& ports) override {
@@ -44,16 +44,17 @@ class MarkerPicture final : public Stage {
     const auto& frame = io.input<StereoFramePtr>("frame");
     const auto& markers = io.input<MarkerSetPtr>("markers");
     if (!frame || !markers) throw InputError("input 'frame' or 'markers' is empty (null)");
-    const auto layout = picture::marker_pair_layout(frame->left.size(), max_width_px_);
+    const auto layout = imaging::marker_pair_layout(frame->left.size(), max_width_px_);
     const std::string path = ctx.with_iteration(path_);
     const auto lines = static_cast<std::size_t>(match_lines_);
-    picture::write_picture(ctx, path, picture::draw_marker_pair(frame->left, frame->right, *markers, layout, lines));
+    imaging::write_picture(ctx.output_path(path),
+                           imaging::draw_marker_pair(frame->left, frame->right, *markers, layout, lines));
     ctx.artifact(ArtifactRole::image, path,
                  {{"caption", "Left and right images of frame " + std::to_string(frame->index) +
                                   " with the markers detected (" + std::to_string(markers->left.size()) + " left, " +
                                   std::to_string(markers->right.size()) + " right): green, matched (" +
                                   std::to_string(markers->matches.size()) + " left-right matches, " +
-                                  std::to_string(picture::lined_matches(markers->matches.size(), lines).size()) +
+                                  std::to_string(imaging::lined_matches(markers->matches.size(), lines).size()) +
                                   " of them joined by lines in colours of their own); red, without a match"}});
   }
 };

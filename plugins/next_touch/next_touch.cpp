@@ -1,9 +1,9 @@
 // next_touch: chooses the next sampling position from the surface model.
-#include "footprint_choice.hpp"
-#include "space_filling.hpp"
-#include "touch_choice.hpp"
+#include "touchcloud/planning/footprint_choice.hpp"
+#include "touchcloud/planning/space_filling.hpp"
+#include "touchcloud/planning/touch_choice.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/types/workspace_parameters.hpp"
+#include "touchcloud/plugin_kit/workspace_parameters.hpp"
 
 namespace touchcloud {
 
@@ -17,7 +17,7 @@ class NextTouch final : public Stage {
   int oversample_ = 1;
   bool revisit_ = false;
   double gel_diameter_mm_ = 65.0;
-  next_touch::PressFootprint press_;
+  planning::PressFootprint press_;
   WorkspaceGrid grid_;
   std::set<int> touched_;
   std::vector<int> first_cells_;  // start space_filling: the design, made at the first touch
@@ -66,7 +66,7 @@ class NextTouch final : public Stage {
   void on_check(RunContext&) override {
     grid_ = workspace_.resolve();
     try {
-      next_touch::check_choice_grid(grid_);
+      planning::check_choice_grid(grid_);
     } catch (const InputError& e) {
       throw ParameterError("grid", e.what());
     }
@@ -75,10 +75,10 @@ class NextTouch final : public Stage {
   void on_configure(RunContext& ctx) override { workspace_.record_used(grid_, ctx); }
 
   int first_cell(RunContext& ctx) {
-    if (start_ == Start::Random) return next_touch::random_cell(grid_, touched_, ctx.rng());
-    if (first_cells_.empty()) first_cells_ = next_touch::space_filling_cells(grid_, initial_random_, ctx.rng());
+    if (start_ == Start::Random) return planning::random_cell(grid_, touched_, ctx.rng());
+    if (first_cells_.empty()) first_cells_ = planning::space_filling_cells(grid_, initial_random_, ctx.rng());
     if (calls_ < static_cast<int>(first_cells_.size())) return first_cells_[static_cast<std::size_t>(calls_)];
-    return next_touch::random_cell(grid_, touched_, ctx.rng());  // more first touches than cells
+    return planning::random_cell(grid_, touched_, ctx.rng());  // more first touches than cells
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -88,15 +88,15 @@ class NextTouch final : public Stage {
     if (calls_ < initial_random_) {
       target.grid_index = first_cell(ctx);
     } else if (strategy_ == Strategy::Random || !surface || !*surface) {
-      target.grid_index = next_touch::random_cell(grid_, touched_, ctx.rng());
+      target.grid_index = planning::random_cell(grid_, touched_, ctx.rng());
     } else if (strategy_ == Strategy::MaxVariance) {
-      const next_touch::VarianceChoice choice = next_touch::max_variance_cell(**surface, grid_, oversample_, avoid);
+      const planning::VarianceChoice choice = planning::max_variance_cell(**surface, grid_, oversample_, avoid);
       target.grid_index = choice.cell;
       target.exploratory = true;
       ctx.metric("chosen_variance", choice.variance_mm2, "mm^2");
     } else {
-      const next_touch::FootprintChoice choice =
-          next_touch::footprint_variance_reduction_cell(**surface, grid_, press_, avoid);
+      const planning::FootprintChoice choice =
+          planning::footprint_variance_reduction_cell(**surface, grid_, press_, avoid);
       target.grid_index = choice.cell;
       target.exploratory = true;
       ctx.metric("chosen_variance", choice.variance_mm2, "mm^2");

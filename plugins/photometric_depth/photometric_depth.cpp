@@ -7,7 +7,7 @@
 #include <fftw3.h>
 #include <opencv2/core/version.hpp>
 
-#include "gradients/photometric_depth_solver.hpp"
+#include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/height_map.hpp"
@@ -24,16 +24,16 @@ std::string size_text(int width, int height) { return std::to_string(width) + " 
 
 class PhotometricDepth final : public Stage {
   std::string calibration_file_;
-  photometric::DepthOptions options_;
+  imaging::DepthOptions options_;
   sensor::PhotometricCalibration calibration_;  // read at check
-  std::unique_ptr<photometric::PhotometricDepthSolver> solver_;
+  std::unique_ptr<imaging::PhotometricDepthSolver> solver_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("calibration", calibration_file_, std::string())
         .input_file()
         .doc("photometric calibration file (photometric_calibration's output) of this sensor and image size");
-    p.add("border", options_.border, photometric::PoissonBorder::Zero,
-          {{"zero", photometric::PoissonBorder::Zero}, {"free", photometric::PoissonBorder::Free}})
+    p.add("border", options_.border, imaging::PoissonBorder::Zero,
+          {{"zero", imaging::PoissonBorder::Zero}, {"free", imaging::PoissonBorder::Free}})
         .doc("zero: height 0 on the image's border (DST; right while the contact stays inside the image); free: "
              "no assumption there (DCT), the height is 0 where the gel is flat (contact running off the pad)");
     p.add("flat_grey", options_.flat_grey, 3.0).unit("grey levels").at_least(0).below(255)
@@ -66,12 +66,12 @@ class PhotometricDepth final : public Stage {
   }
 
   void on_configure(RunContext& ctx) override {
-    solver_ = std::make_unique<photometric::PhotometricDepthSolver>(calibration_, options_);
+    solver_ = std::make_unique<imaging::PhotometricDepthSolver>(calibration_, options_);
     ctx.note("calibration_sensor", calibration_.sensor);
     ctx.log("calibration of " + calibration_.sensor + " at " +
             size_text(calibration_.width_px, calibration_.height_px) + ", polynomial degree " +
             std::to_string(calibration_.degree) + "; " +
-            (options_.border == photometric::PoissonBorder::Zero ? "DST (zero border)" : "DCT (free border)") +
+            (options_.border == imaging::PoissonBorder::Zero ? "DST (zero border)" : "DCT (free border)") +
             " planned once for that size");
   }
 
@@ -95,7 +95,7 @@ class PhotometricDepth final : public Stage {
     const auto& reference = io.input<MonoColourFramePtr>("reference");
     require_frame(image, "image");
     require_frame(reference, "reference");
-    photometric::DepthResult r = solver_->solve(image->image, reference->image);
+    imaging::DepthResult r = solver_->solve(image->image, reference->image);
     auto map = std::make_shared<HeightMap>();
     map->height_mm = r.height_mm;
     map->valid = cv::Mat(r.height_mm.size(), CV_8UC1, cv::Scalar(255));

@@ -3,14 +3,14 @@
 // 'corners', the simulator's way) or all at once (input 'views', corners
 // found in images), and optionally the cameras from stereo calibration in
 // place of the initial guess's; on finish it estimates d_xy, the plate normal
-// and mu_silicone (calibration/plate_calibration.hpp) and writes the
-// calibrated sensor file.
+// and mu_silicone (touchcloud/calibration/plate_calibration.hpp) and writes
+// the calibrated sensor file.
 #include <cmath>
 #include <sstream>
 
-#include "calibration/plate_calibration.hpp"
+#include "touchcloud/calibration/plate_calibration.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/plugin_kit/sensor_parameters.hpp"
 #include "touchcloud/types/board_views.hpp"
 #include "touchcloud/types/stereo_cameras.hpp"
 
@@ -19,15 +19,15 @@ namespace touchcloud {
 class RsrtCalibration final : public Stage {
   sensor::SensorParameters sensor_;
   std::string output_;
-  rsrt_calibration::BoardSpans distances_ = rsrt_calibration::BoardSpans::AllPairs;
+  calibration::BoardSpans distances_ = calibration::BoardSpans::AllPairs;
   std::array<int, 2> board_corners_{};
   double square_mm_ = 4, min_board_tilt_deg_ = 5;
   bool diagonals_ = true;
   int min_corners_per_press_ = 9;
 
-  rsrt_calibration::Checkerboard board_;
+  calibration::Checkerboard board_;
   sensor::GelStereoSensor sensor_read_;  // the initial guess, read at check
-  std::vector<rsrt_calibration::PressCorners> presses_;
+  std::vector<calibration::PressCorners> presses_;
   std::vector<std::string> press_names_;  // for the per-press residuals
   StereoCamerasPtr cameras_;              // from stereo calibration, when connected
 
@@ -39,10 +39,10 @@ class RsrtCalibration final : public Stage {
     p.add("square_mm", square_mm_, 4.0).unit("mm").above(0).doc("edge of one board square");
     p.add("output", output_, std::string("calibrated_sensor.yaml")).output_file()
         .doc("the calibrated sensor file, in the output folder");
-    p.add("distances", distances_, rsrt_calibration::BoardSpans::AllPairs,
-          {{"all_pairs", rsrt_calibration::BoardSpans::AllPairs},
-           {"rows_and_columns", rsrt_calibration::BoardSpans::RowsAndColumns},
-           {"neighbours", rsrt_calibration::BoardSpans::Neighbours}})
+    p.add("distances", distances_, calibration::BoardSpans::AllPairs,
+          {{"all_pairs", calibration::BoardSpans::AllPairs},
+           {"rows_and_columns", calibration::BoardSpans::RowsAndColumns},
+           {"neighbours", calibration::BoardSpans::Neighbours}})
         .doc("corner pairs whose distances are fitted; neighbours (the paper's) is biased by pixel noise");
     p.add("diagonals", diagonals_, true).doc("with rows_and_columns or neighbours: also fit the squares' diagonals");
     p.add("min_corners_per_press", min_corners_per_press_, 9).range(4, 10000)
@@ -111,7 +111,7 @@ class RsrtCalibration final : public Stage {
                                                   " board");
       for (const auto& view : views->views) {
         if (!view.corners) throw InputError("images " + view.left_file + ", " + view.right_file + ": no corners");
-        add_press(rsrt_calibration::press_corners_from(*view.corners, board_, "images " + view.left_file + ", " +
+        add_press(calibration::press_corners_from(*view.corners, board_, "images " + view.left_file + ", " +
                                                                                   view.right_file),
                   std::filesystem::path(view.left_file).filename().string(), ctx);
       }
@@ -120,11 +120,11 @@ class RsrtCalibration final : public Stage {
     const auto& markers = io.input<MarkerSetPtr>("corners");
     const std::string what = "press " + std::to_string(presses_.size()) + " (input 'corners')";
     if (!markers) throw InputError(what + ": no marker set");
-    add_press(rsrt_calibration::press_corners_from(*markers, board_, what), "press " + std::to_string(presses_.size()),
+    add_press(calibration::press_corners_from(*markers, board_, what), "press " + std::to_string(presses_.size()),
               ctx);
   }
 
-  void add_press(rsrt_calibration::PressCorners press, std::string name, RunContext& ctx) {
+  void add_press(calibration::PressCorners press, std::string name, RunContext& ctx) {
     presses_.push_back(std::move(press));
     press_names_.push_back(std::move(name));
     ctx.metric("press_corners", static_cast<double>(presses_.back().corners.size()));
@@ -146,12 +146,12 @@ class RsrtCalibration final : public Stage {
                          e.what());
       }
     }();
-    rsrt_calibration::PlateCalibrationOptions options;
+    calibration::PlateCalibrationOptions options;
     options.spans = distances_;
     options.use_diagonals = diagonals_;
     options.min_corners_per_press = min_corners_per_press_;
     options.min_board_tilt_deg = min_board_tilt_deg_;
-    const auto result = rsrt_calibration::calibrate_plate(initial, board_, presses_, options);
+    const auto result = calibration::calibrate_plate(initial, board_, presses_, options);
 
     sensor::set_plate_from_left_frame(sensor, result.plate);
     std::ostringstream comment;
@@ -169,7 +169,7 @@ class RsrtCalibration final : public Stage {
     const optics::StereoRig calibrated = sensor_.rig(sensor, true);
     std::ostringstream per_press;
     for (std::size_t i = 0; i < presses_.size(); ++i) {
-      const double error = rsrt_calibration::mean_corner_error_mm(calibrated, board_, {presses_[i]});
+      const double error = calibration::mean_corner_error_mm(calibrated, board_, {presses_[i]});
       ctx.metric("press_corner_error_mm", error, "mm");
       per_press << press_names_[i] << " " << error << " mm\n";
     }

@@ -1,9 +1,9 @@
 // rsrt_triangulation: marker positions from matched pixel pairs by
 // refractive stereo ray tracing, with the same optics as the simulator (see
 // marker_triangulator.hpp). The first frame is the no-contact reference.
-#include "marker_triangulator.hpp"
+#include "touchcloud/markers/marker_triangulator.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/sensor/sensor_parameters.hpp"
+#include "touchcloud/plugin_kit/sensor_parameters.hpp"
 #include "touchcloud/types/frames.hpp"
 
 namespace touchcloud {
@@ -13,7 +13,7 @@ class RsrtTriangulation final : public Stage {
   bool refraction_ = true;
   sensor::GelStereoSensor sensor_read_;  // read at check
   double max_gap_mm_ = 0.5;
-  std::unique_ptr<rsrt_triangulation::MarkerTriangulator> triangulator_;
+  std::unique_ptr<markers::MarkerTriangulator> triangulator_;
 
   void declare_parameters(ParameterSet& p) override {
     sensor_.declare(p, "sensor description: a scene or sensor file with a 'sensor:' section (e.g. from rsrt_calibration)");
@@ -40,7 +40,7 @@ class RsrtTriangulation final : public Stage {
   void on_configure(RunContext&) override {
     const auto& sensor = sensor_read_;
     // The pinhole comparison keeps the real rig and ignores its plate.
-    triangulator_ = std::make_unique<rsrt_triangulation::MarkerTriangulator>(sensor_.rig(sensor, true),
+    triangulator_ = std::make_unique<markers::MarkerTriangulator>(sensor_.rig(sensor, true),
                                                                sensor.sensor_from_left_camera(), refraction_,
                                                                max_gap_mm_);
   }

@@ -1,21 +1,20 @@
 // stereo_camera_calibration: both cameras' intrinsics, lens distortion and
 // the right camera's pose from images of a checkerboard held in air (Zhang's
-// method, calibration/zhang_stereo.hpp). Reports the reprojection residual
-// of every image pair; the refractive calibration takes the cameras on.
+// method, touchcloud/calibration/zhang_stereo.hpp). Reports the reprojection
+// residual of every image pair; the refractive calibration takes the cameras
+// on.
 #include <cmath>
 #include <sstream>
 
-#include "calibration/zhang_stereo.hpp"
+#include "touchcloud/calibration/zhang_stereo.hpp"
 #include "touchcloud/plugin.hpp"
 
 namespace touchcloud {
 
-namespace scc = stereo_camera_calibration;
-
 class StereoCameraCalibration final : public Stage {
   std::array<int, 2> board_corners_{};
   double square_mm_ = 10;
-  scc::StereoCalibrationOptions options_;
+  calibration::StereoCalibrationOptions options_;
 
   sensor::Checkerboard board_;
 
@@ -23,10 +22,10 @@ class StereoCameraCalibration final : public Stage {
     p.add("board_corners", board_corners_, std::array<int, 2>{9, 6}).range(2, 100)
         .doc("inner corners of the board [cols, rows], as board_image_corners searched for");
     p.add("square_mm", square_mm_, 10.0).unit("mm").above(0).doc("edge of one printed square, measured");
-    p.add("lens_model", options_.lens, scc::LensModel::Radial2Tangential,
-          {{"none", scc::LensModel::None},
-           {"k1_k2_p1_p2", scc::LensModel::Radial2Tangential},
-           {"k1_k2_p1_p2_k3", scc::LensModel::Radial3Tangential}})
+    p.add("lens_model", options_.lens, calibration::LensModel::Radial2Tangential,
+          {{"none", calibration::LensModel::None},
+           {"k1_k2_p1_p2", calibration::LensModel::Radial2Tangential},
+           {"k1_k2_p1_p2_k3", calibration::LensModel::Radial3Tangential}})
         .doc("the distortion coefficients estimated; the others stay 0");
     p.add("min_image_pairs", options_.min_views, 4).range(3, 100000).doc("fewer image pairs are refused");
     p.add("max_image_rms_px", options_.max_view_rms_px, 1.0).unit("px").above(0)
@@ -54,7 +53,7 @@ class StereoCameraCalibration final : public Stage {
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& views = io.input<BoardViewsPtr>("views");
     if (!views) throw InputError("input 'views': no board views");
-    const auto r = scc::calibrate_stereo(*views, board_, options_);
+    const auto r = calibration::calibrate_stereo(*views, board_, options_);
 
     std::ostringstream residuals;
     for (const auto& v : r.views) {

@@ -6,7 +6,7 @@
 
 #include <opencv2/core/version.hpp>
 
-#include "matcher/disparity_matcher.hpp"
+#include "touchcloud/imaging/disparity_matcher.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/colour_stereo_frame.hpp"
@@ -19,11 +19,11 @@ namespace {
 const LibraryVersion opencv_version("opencv", CV_VERSION);
 }  // namespace
 
-using stereo_disparity::MatchMethod;
+using imaging::MatchMethod;
 
 class StereoDisparity final : public Stage {
-  stereo_disparity::MatcherOptions o_;
-  std::optional<stereo_disparity::DisparityMatcher> matcher_;
+  imaging::MatcherOptions o_;
+  std::optional<imaging::DisparityMatcher> matcher_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("method", o_.method, MatchMethod::SemiGlobal,

@@ -15,9 +15,9 @@
 #include "near_data.hpp"
 
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/plugin_kit/workspace_parameters.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/surface_model.hpp"
-#include "touchcloud/types/workspace_parameters.hpp"
 
 namespace touchcloud {
 

@@ -5,8 +5,8 @@
 // checked before the run starts.
 #include <opencv2/core/version.hpp>
 
-#include "samples/tactile_sample_files.hpp"
 #include "touchcloud/io/tactile_dataset.hpp"
+#include "touchcloud/io/tactile_sample_files.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/height_map.hpp"
@@ -59,7 +59,7 @@ class TactileDatasetReader final : public Stage {
   }
 
   cv::Mat read(const fs::path& file, int type) const {
-    return tactile_dataset::read_dataset_image(file, type, info_, info_file_);
+    return io::read_dataset_image(file, type, info_, info_file_);
   }
 
   MonoColourFramePtr frame(cv::Mat image, long index) const {
@@ -83,7 +83,7 @@ class TactileDatasetReader final : public Stage {
           "reference", frame(read(fs::path(info_file_).parent_path() / io::kTactileDatasetReference, CV_8UC3), index));
     if (io.wants("height")) {
       auto map = std::make_shared<HeightMap>();
-      tactile_dataset::SampleTruth truth = tactile_dataset::read_sample_truth(s, info_, info_file_);
+      io::SampleTruth truth = io::read_sample_truth(s, info_, info_file_);
       map->height_mm = truth.height_mm;
       map->valid = cv::Mat(map->height_mm.size(), CV_8UC1, cv::Scalar(255));
       map->contact_mask = truth.contact_mask;

@@ -13,9 +13,9 @@
 #include <cmath>
 #include <optional>
 
-#include "samples/tactile_sample_files.hpp"
 #include "touchcloud/file_write.hpp"
 #include "touchcloud/io/tactile_dataset.hpp"
+#include "touchcloud/io/tactile_sample_files.hpp"
 #include "touchcloud/learning/checkpoint.hpp"
 #include "touchcloud/learning/tactile_net_pair.hpp"
 #include "touchcloud/learning/tactile_nets.hpp"
@@ -120,7 +120,7 @@ class TactileNetTrain final : public Stage {
       if (!fs::exists(reference))
         throw InputError("dataset " + dataset_file_ + " has no " + io::kTactileDatasetReference +
                          " (the no-contact image): the networks take the difference to it");
-      reference_ = tactile_dataset::read_dataset_image(reference, CV_8UC3, info_, dataset_file_);
+      reference_ = io::read_dataset_image(reference, CV_8UC3, info_, dataset_file_);
       train_ = read_split(io::TactileSplit::Train);
       validation_ = read_split(io::TactileSplit::Validation);
     } catch (const InputError& e) {
@@ -151,8 +151,8 @@ class TactileNetTrain final : public Stage {
   Split read_split(io::TactileSplit split) const {
     Split out;
     for (const auto& s : io::list_tactile_dataset(fs::path(dataset_file_).parent_path(), split)) {
-      out.images.push_back(tactile_dataset::read_dataset_image(s.image, CV_8UC3, info_, dataset_file_));
-      tactile_dataset::SampleTruth truth = tactile_dataset::read_sample_truth(s, info_, dataset_file_);
+      out.images.push_back(io::read_dataset_image(s.image, CV_8UC3, info_, dataset_file_));
+      io::SampleTruth truth = io::read_sample_truth(s, info_, dataset_file_);
       out.heights.push_back(truth.height_mm);
       out.masks.push_back(truth.contact_mask);
     }

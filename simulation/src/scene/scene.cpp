@@ -4,8 +4,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "touchcloud/config/workspace_section.hpp"
 #include "touchcloud/config/yaml_fields.hpp"
-#include "touchcloud/types/workspace_parameters.hpp"
 
 namespace fs = std::filesystem;
 

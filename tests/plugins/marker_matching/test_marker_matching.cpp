@@ -1,75 +1,19 @@
 // marker_matching on simulated marker pixels (the simulator's marker truth,
 // with centre noise and dropout, anonymised and shuffled as a detector would
-// report them): the reference frame's pairs are the true ones, and ids
-// follow their markers through a press without a swap.
+// report them): ids follow their markers through a press without a swap, and
+// the stage's refusals.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
+#include "anonymised_markers.hpp"
 #include "stage_harness.hpp"
-#include "stereo_matcher.hpp"
-#include "touchcloud/simulation/gelstereo_simulation.hpp"
 #include "touchcloud/sensor/gelstereo_sensor.hpp"
+#include "touchcloud/simulation/gelstereo_simulation.hpp"
 
 using namespace touchcloud;
-using test::TempDir;
-
-namespace {
-
-// A plane 10 mm high under the default sensor.
-std::filesystem::path write_scene(const TempDir& dir, const std::string& effects,
-                                  const std::string& extra = "sensor: {}") {
-  const auto file = dir / "scene.yaml";
-  test::write_file(file, "object: {analytic: plane, height_mm: 10}\n" + extra + "\neffects: " + effects + "\n");
-  return file;
-}
-
-const std::string kNoisyEffects =
-    "[contact, refraction, {pixel_noise: {sigma_px: 0.1}}, {marker_dropout: {probability: 0.03}}]";
-
-// What a detector reports: no ids, no pairs, in no particular order. The
-// true marker id of each reported marker is kept aside.
-struct Anonymised {
-  MarkerSetPtr markers;
-  std::vector<int> true_left, true_right;
-};
-
-Anonymised anonymise(MarkerSet set, std::mt19937_64& rng) {
-  Anonymised a;
-  std::shuffle(set.left.begin(), set.left.end(), rng);
-  std::shuffle(set.right.begin(), set.right.end(), rng);
-  for (auto& m : set.left) a.true_left.push_back(m.id), m.id = -1;
-  for (auto& m : set.right) a.true_right.push_back(m.id), m.id = -1;
-  set.matches.clear();
-  a.markers = std::make_shared<MarkerSet>(std::move(set));
-  return a;
-}
-
-}  // namespace
-
-TEST(RestingGelMatcher, PairsTheReferenceFramesMarkersCorrectly) {
-  TempDir dir;
-  const auto scene_file = write_scene(dir, kNoisyEffects);
-  simulation::GelStereoSimulation sim(simulation::load_scene(scene_file), 5);
-  sim.step({0, 0}, false);  // at the safe height: no contact
-  const MarkerSet truth = sim.marker_set();
-  std::mt19937_64 rng(1);
-  const Anonymised a = anonymise(truth, rng);
-
-  const auto sensor = sensor::load_gelstereo_sensor(scene_file);
-  const marker_matching::RestingGelMatcher matcher(sensor::make_stereo_rig(sensor, true, false),
-                                            sensor.sensor_from_left_camera().inverse(), sensor.gel.radius_mm());
-  const auto matches = matcher.match(a.markers->left, a.markers->right, 4.0);
-  std::size_t wrong = 0;
-  for (const auto& m : matches) wrong += a.true_left[m.left] != a.true_right[m.right];
-  EXPECT_EQ(wrong, 0u);
-  // Nearly every marker both views report is paired (a few at the image
-  // border may have predictions that leave the right image).
-  EXPECT_GE(matches.size(), static_cast<std::size_t>(0.995 * truth.matches.size()))
-      << matches.size() << " of " << truth.matches.size();
-  EXPECT_GT(truth.matches.size(), 1400u);
-}
+using namespace touchcloud::test;
 
 TEST(MarkerMatchingStage, IdsFollowTheirMarkersThroughAPressAndOneViewMarkersStayUnpaired) {
   TempDir dir;

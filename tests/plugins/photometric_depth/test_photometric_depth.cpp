@@ -1,146 +1,15 @@
-// photometric_depth: Poisson integration is exact on exact gradients; a
-// sphere pressed into the simulated gel comes back from its rendered image
-// after calibration; images of another size or sensor are refused.
+// photometric_depth: the stage refuses images of another size or sensor than
+// its calibration's, and a calibration file without them; the solver itself
+// is tested in tests/imaging.
 #include <gtest/gtest.h>
 
-#include <random>
-
-#include "ball_calibration.hpp"
-#include "gradients/photometric_depth_solver.hpp"
-#include "poisson/dct_poisson.hpp"
-#include "poisson/dst_poisson.hpp"
+#include "stage_harness.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
+#include "touchcloud/types/height_map.hpp"
+#include "touchcloud/types/mono_colour_frame.hpp"
 
 using namespace touchcloud;
 using namespace touchcloud::test;
-
-namespace {
-
-// The staggered forward differences the solvers take: p across the columns
-// (width - 1 of them), q down the rows (height - 1).
-std::pair<cv::Mat, cv::Mat> exact_gradients(const cv::Mat& height) {
-  const int w = height.cols, h = height.rows;
-  return {height.colRange(1, w) - height.colRange(0, w - 1), height.rowRange(1, h) - height.rowRange(0, h - 1)};
-}
-
-}  // namespace
-
-TEST(DstPoisson, RecoversAKnownHeightMapFromItsExactGradients) {
-  const int w = 320, h = 240;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> noise(-0.2, 0.2);
-  cv::Mat height = cv::Mat::zeros(h, w, CV_64FC1);
-  for (int v = 1; v + 1 < h; ++v)
-    for (int u = 1; u + 1 < w; ++u) {
-      const double x = (u - 150.0) / 40, y = (v - 110.0) / 30;
-      height.at<double>(v, u) = 1.5 * std::exp(-x * x - y * y) + noise(rng);  // a bump and rough texture
-    }
-  const auto [p, q] = exact_gradients(height);
-  photometric::DstPoisson poisson(w, h);
-  const cv::Mat solved = poisson.solve(p, q);
-  double worst = 0;
-  for (int v = 1; v + 1 < h; ++v)
-    for (int u = 1; u + 1 < w; ++u) worst = std::max(worst, std::abs(solved.at<double>(v, u) - height.at<double>(v, u)));
-  EXPECT_LT(worst, 1e-6) << "worst " << worst << " mm";
-  // The plan is reused: a second solve gives the same bits.
-  EXPECT_EQ(cv::countNonZero(poisson.solve(p, q) != solved), 0);
-  EXPECT_THROW(photometric::DstPoisson(2, 10), std::invalid_argument);
-}
-
-// The row transforms and the column systems at their smallest: one interior
-// row, one interior column, and a 240-row image's prime-length case above.
-TEST(DstPoisson, RecoversExactGradientsAtTheSmallestSizes) {
-  for (const auto& [w, h] : {std::pair{3, 3}, std::pair{7, 3}, std::pair{3, 7}, std::pair{5, 4}}) {
-    cv::Mat height = cv::Mat::zeros(h, w, CV_64FC1);
-    for (int v = 1; v + 1 < h; ++v)
-      for (int u = 1; u + 1 < w; ++u) height.at<double>(v, u) = 0.3 * u - 0.2 * v + 0.1 * u * v;
-    const auto [p, q] = exact_gradients(height);
-    photometric::DstPoisson poisson(w, h);
-    const cv::Mat solved = poisson.solve(p, q);
-    EXPECT_LT(cv::norm(solved - height, cv::NORM_INF), 1e-12) << w << " x " << h;
-  }
-}
-
-TEST(DctPoisson, RecoversAnyHeightMapUpToAConstantFromItsExactGradients) {
-  const int w = 64, h = 48;
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<double> any(-1.0, 2.0);
-  cv::Mat height(h, w, CV_64FC1);
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) height.at<double>(v, u) = 0.02 * u + any(rng);  // nothing zero on the border
-  const auto [p, q] = exact_gradients(height);
-  photometric::DctPoisson poisson(w, h);
-  const cv::Mat solved = poisson.solve(p, q);
-  const double mean = cv::mean(height)[0];
-  double worst = 0;
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u)
-      worst = std::max(worst, std::abs(solved.at<double>(v, u) - (height.at<double>(v, u) - mean)));
-  EXPECT_LT(worst, 1e-6) << "worst " << worst << " mm";
-  EXPECT_THROW(photometric::DctPoisson(1, 10), std::invalid_argument);
-}
-
-TEST(PhotometricDepth, RecoversASpherePressFromItsImageAfterCalibration) {
-  TempDir dir;
-  const auto file = calibrate_on_ball(dir, {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}});
-  photometric::PhotometricDepthSolver solver(sensor::load_photometric_calibration(file), {});
-  // A held-out press of the ball, elsewhere in the image and less deep.
-  simulation::GelSightSimulation sim(ball_scene(), 2);
-  press_pad_into(sim, {0.4, -0.3}, 0.5);
-  const auto result = solver.solve(sim.render().image, sim.render_reference().image);
-  const HeightMap truth = sim.height_truth(0.05);
-  double sum2 = 0, worst = 0, peak = 0;
-  int n = 0;
-  for (int v = 0; v < truth.height_mm.rows; ++v)
-    for (int u = 0; u < truth.height_mm.cols; ++u) {
-      if (!truth.contact_mask.at<std::uint8_t>(v, u)) continue;
-      const double e = result.height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
-      sum2 += e * e, ++n;
-      worst = std::max(worst, std::abs(e));
-      peak = std::max(peak, double(truth.height_mm.at<float>(v, u)));
-    }
-  ASSERT_GT(n, 1000);
-  const double rmse = std::sqrt(sum2 / n);
-  const double iou = cv::countNonZero(result.contact_mask & truth.contact_mask) /
-                     double(cv::countNonZero(result.contact_mask | truth.contact_mask));
-  std::cout << "sphere press " << peak << " mm deep: height RMSE " << rmse << " mm, max error " << worst
-            << " mm over " << n << " contact pixels; contact IoU " << iou << "\n";
-  EXPECT_LT(rmse, 0.05);
-  EXPECT_LT(worst, 0.15);
-  EXPECT_GT(iou, 0.8);
-}
-
-TEST(PhotometricDepth, AFreeBorderKeepsTheHeightOfAContactThatRunsOffTheImage) {
-  TempDir dir;
-  const auto file = calibrate_on_ball(dir, {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}});
-  // The ball under the pad's edge (half width 9.6 mm): part of the contact lies outside the image.
-  simulation::GelSightSimulation sim(ball_scene(), 3);
-  press_pad_into(sim, {8.8, 0.0}, 0.5);
-  const HeightMap truth = sim.height_truth(0.05);
-  int on_border = 0;
-  for (int v = 0; v < 240; ++v) on_border += truth.contact_mask.at<std::uint8_t>(v, 0) || truth.contact_mask.at<std::uint8_t>(v, 319);
-  ASSERT_GT(on_border, 20);
-  auto rmse = [&](photometric::PoissonBorder border) {
-    photometric::DepthOptions options;
-    options.border = border;
-    photometric::PhotometricDepthSolver solver(sensor::load_photometric_calibration(file), options);
-    const auto r = solver.solve(sim.render().image, sim.render_reference().image);
-    double sum2 = 0;
-    int n = 0;
-    for (int v = 0; v < 240; ++v)
-      for (int u = 0; u < 320; ++u)
-        if (truth.contact_mask.at<std::uint8_t>(v, u)) {
-          const double e = r.height_mm.at<float>(v, u) - truth.height_mm.at<float>(v, u);
-          sum2 += e * e, ++n;
-        }
-    return std::sqrt(sum2 / n);
-  };
-  const double zero = rmse(photometric::PoissonBorder::Zero), free = rmse(photometric::PoissonBorder::Free);
-  std::cout << "contact off the image (" << on_border << " border rows): height RMSE " << zero << " mm (zero border), "
-            << free << " mm (free border)\n";
-  EXPECT_LT(free, 0.05);
-  EXPECT_GT(zero, 2 * free);
-}
 
 namespace {
 

@@ -1,7 +1,6 @@
 #include "touchcloud/config/yaml_fields.hpp"
 #include "touchcloud/number_text.hpp"
 #include "touchcloud/path_text.hpp"
-#include "touchcloud/parameters.hpp"
 
 #include <cmath>
 #include <sstream>

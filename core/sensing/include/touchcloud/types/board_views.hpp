@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/marker_set.hpp"
 
 namespace touchcloud {

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/camera_view.hpp"
 #include "touchcloud/types/frames.hpp"
 

@@ -1,7 +1,7 @@
 // Stable-contact detection state (Eq. 2-3 of the GelStereo Palm 2.0 paper).
 #pragma once
 
-#include "touchcloud/ports.hpp"
+#include "touchcloud/data_type_name.hpp"
 
 namespace touchcloud {
 

@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/frames.hpp"
 #include "touchcloud/types/rectified_stereo.hpp"
 

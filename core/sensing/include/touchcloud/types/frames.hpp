@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "touchcloud/ports.hpp"
+#include "touchcloud/data_type_name.hpp"
 
 namespace touchcloud {
 

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/frames.hpp"
 
 namespace touchcloud {

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "touchcloud/ports.hpp"
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/camera_view.hpp"
 
 namespace touchcloud {

@@ -5,7 +5,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include "touchcloud/ports.hpp"
+#include "touchcloud/data_type_name.hpp"
 
 namespace touchcloud {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "touchcloud/ports.hpp"
+#include "touchcloud/data_type_name.hpp"
 
 namespace touchcloud {
 

@@ -7,8 +7,8 @@
 
 #include <Eigen/Geometry>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/optics/pinhole_camera.hpp"
-#include "touchcloud/ports.hpp"
 
 namespace touchcloud {
 

@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/frames.hpp"
 
 namespace touchcloud {

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "touchcloud/ports.hpp"
+#include "touchcloud/data_type_name.hpp"
 
 namespace touchcloud {
 

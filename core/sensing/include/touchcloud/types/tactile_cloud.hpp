@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "touchcloud/data_type_name.hpp"
 #include "touchcloud/types/frames.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 

@@ -195,6 +195,7 @@ scoring::GroundTruth ground_truth_of(const json& record) {
   if (a.contains("samples") && a["samples"].is_number_integer()) options.mesh_samples = a["samples"].get<std::size_t>();
   if (a.contains("sample_seed") && a["sample_seed"].is_number_integer())
     options.seed = a["sample_seed"].get<std::uint64_t>();
+  if (a.value("visible", json("all")) == "from_above") options.visible = scoring::Visibility::from_above;
   scoring::GroundTruth gt =
       a.contains("scene") ? scoring::index_ground_truth(scoring::read_scene_ground_truth(text("scene")), options)
                           : scoring::load_ground_truth(text("ground_truth"), options);

@@ -15,6 +15,7 @@ Action* add_run_verb(CLI::App& app) {
   struct Options {
     std::string pipeline;
     std::vector<std::string> sets;
+    std::string scene;
     std::uint64_t seed = 0;
     std::string out;
     bool quiet = false, progress = false;
@@ -25,6 +26,7 @@ Action* add_run_verb(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run a pipeline; write its outputs and summary.json into the output folder");
   cmd->add_option("pipeline", o.pipeline, "pipeline YAML file")->required();
   cmd->add_option("--set", o.sets, kSetHelp);
+  cmd->add_option("--scene", o.scene, kSceneHelp);
   cmd->add_option("--seed", o.seed, "seed for every random draw; a seeded run reproduces bit for bit")
       ->check(seed_value())
       ->capture_default_str();
@@ -38,6 +40,7 @@ Action* add_run_verb(CLI::App& app) {
     action = [] {
       std::vector<Override> overrides;
       for (const auto& s : o.sets) overrides.push_back(parse_override(s));
+      if (!o.scene.empty()) overrides.push_back({kPipelineSceneKey, o.scene, "--scene"});
       PluginRegistry registry;
       Pipeline p = Pipeline::load(o.pipeline, overrides, registry);
       RunOptions options;

@@ -40,6 +40,7 @@ struct GroundTruthSummary {
   std::string file;
   std::string kind;
   std::size_t points = 0, triangles = 0, dropped_nonfinite = 0;
+  std::size_t hidden_points = 0;  // samples not visible (--visible from_above)
   double area_mm2 = 0, spacing_mm = 0, load_time_s = 0;
   std::string error;  // when it could not be loaded
 };
@@ -66,6 +67,7 @@ struct Options {
   int threads = 0;
   bool drop_nonfinite = false;
   bool progress = false;
+  scoring::Visibility visible = scoring::Visibility::all;
 };
 
 NonFinitePoints nonfinite_rule(const Options& o) {
@@ -81,13 +83,21 @@ scoring::GroundTruth load(const std::string& file, const Options& o, int threads
   options.seed = o.seed;
   options.nonfinite = nonfinite_rule(o);
   options.threads = threads;
-  scoring::GroundTruth gt = scoring::load_ground_truth(file, options);
+  options.visible = o.visible;
+  scoring::GroundTruthFile read = scoring::read_ground_truth(file, options);
+  // A mesh in metres scores as a speck: every distance would be the object's size.
+  if (read.kind == scoring::GroundTruthKind::Mesh)
+    if (auto why = scoring::unit_mistake(read.mesh))
+      throw InputError(file + ": " + *why + " Ground truth is in mm: scale the mesh, or make a scene of it "
+                       "(touchcloud-make-scene MESH --scale S) and give that to --gt");
+  scoring::GroundTruth gt = scoring::index_ground_truth(std::move(read), options);
   summary.kind = scoring::to_string(gt.kind);
   summary.points = gt.points.size();
   summary.triangles = gt.triangles;
   summary.area_mm2 = gt.area_mm2;
   summary.spacing_mm = gt.sample_spacing_mm();
   summary.dropped_nonfinite = gt.dropped_nonfinite;
+  summary.hidden_points = gt.hidden_points;
   summary.load_time_s = seconds_since(t0);
   return gt;
 }
@@ -142,6 +152,8 @@ nlohmann::ordered_json gt_json(const GroundTruthSummary& g, const Options& o) {
     j["area_mm2"] = g.area_mm2;
     j["sample_spacing_mm"] = g.spacing_mm;
     j["seed"] = o.seed;
+    j["visible"] = scoring::to_string(o.visible);
+    if (o.visible != scoring::Visibility::all) j["hidden_points"] = g.hidden_points;
   } else if (g.dropped_nonfinite > 0) {
     j["dropped_nonfinite"] = g.dropped_nonfinite;
   }
@@ -182,7 +194,10 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
     std::cout << "# ground truth " << g->file << ": " << g->kind << ", " << g->points << " points";
     if (g->kind == "mesh")
       std::cout << " sampled from " << format_fixed(g->area_mm2, 1) << " mm^2 (mean spacing "
-                << format_fixed(g->spacing_mm, 3) << " mm, seed " << o.seed << ")";
+                << format_fixed(g->spacing_mm, 3) << " mm, seed " << o.seed << ")"
+                << (o.visible == scoring::Visibility::from_above
+                        ? ", visible from above only (" + std::to_string(g->hidden_points) + " hidden samples left out)"
+                        : ", the whole surface");
     std::cout << "\n";
   }
   std::size_t name_width = 8, gt_width = 12;
@@ -229,7 +244,8 @@ nlohmann::json encode(const Outcome& r, const GroundTruthSummary& g) {
                       {"time", num(r.time_s)}};
   j["gt"] = {{"file", g.file},       {"kind", g.kind},          {"points", g.points},
              {"triangles", g.triangles}, {"dropped", g.dropped_nonfinite}, {"area", num(g.area_mm2)},
-             {"spacing", num(g.spacing_mm)}, {"load_time", num(g.load_time_s)}, {"error", g.error}};
+             {"spacing", num(g.spacing_mm)}, {"load_time", num(g.load_time_s)}, {"error", g.error},
+             {"hidden", g.hidden_points}};
   if (r.score) {
     nlohmann::json s = {{"estimate_points", r.score->estimate_points},
                         {"ground_truth_points", r.score->ground_truth_points},
@@ -253,6 +269,7 @@ void decode(const nlohmann::json& j, Outcome& r, GroundTruthSummary& g, const sc
     g.points = t.at("points").get<std::size_t>();
     g.triangles = t.at("triangles").get<std::size_t>();
     g.dropped_nonfinite = t.at("dropped").get<std::size_t>();
+    g.hidden_points = t.at("hidden").get<std::size_t>();
     g.area_mm2 = num(t.at("area"));
     g.spacing_mm = num(t.at("spacing"));
     g.load_time_s = num(t.at("load_time"));
@@ -421,8 +438,10 @@ Action* add_score_verb(CLI::App& app) {
   static Action action;
   auto* cmd = app.add_subcommand("score", "Score estimated clouds against ground truth (a CAD mesh or a cloud)");
   cmd->add_option("--gt", o.gt,
-                  "ground truth: a mesh (.stl, .obj, .ply with faces; sampled uniformly by area) or a cloud "
-                  "(.pcd, .ply); optional when every estimate comes from a manifest that names its own");
+                  "ground truth: a mesh in mm (.stl, .obj, .ply with faces; sampled uniformly by area), a scene "
+                  "(.yaml: its object scaled and posed as simulated) or a cloud (.pcd, .ply); optional when every "
+                  "estimate comes from a manifest that names its own. A mesh under 5 mm or over 2 m across is "
+                  "refused as in another unit");
   cmd->add_option("estimates", o.estimates,
                   "estimated clouds (.pcd, .ply): files, folders (every cloud under them, e.g. a `touchcloud run` "
                   "output folder), globs, or CSV manifests of 'estimate, ground truth' rows (paths relative to "
@@ -445,6 +464,14 @@ Action* add_score_verb(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--fscore-threshold", o.fscore_threshold_mm,
                   "F-score distance threshold in mm (default: the sensor's 1.5 mm spatial resolution)")
+      ->capture_default_str();
+  cmd->add_option("--visible", o.visible,
+                  "the part of a mesh or scene scored against: all, or from_above (only what a press straight down "
+                  "can reach: samples with no surface above them; a closed object's sides and bottom are left out)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, scoring::Visibility>{{"all", scoring::Visibility::all},
+                                                     {"from_above", scoring::Visibility::from_above}},
+          CLI::ignore_case))
       ->capture_default_str();
   cmd->add_option("--threads", o.threads, "threads to use (default 0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--drop-nonfinite", o.drop_nonfinite,

@@ -59,7 +59,7 @@ std::string one_line(std::string text) {
 
 Action* add_sweep_verb(CLI::App& app) {
   struct Options {
-    std::string pipeline, out, accuracy, time = "wall_time_s";
+    std::string pipeline, out, accuracy, time = "wall_time_s", scene;
     std::vector<std::string> vary, sets;
     int repeats = 1;
     std::uint64_t seed = 0;
@@ -72,6 +72,7 @@ Action* add_sweep_verb(CLI::App& app) {
   cmd->add_option("pipeline", o.pipeline, "pipeline YAML file")->required();
   cmd->add_option("--vary", o.vary, "STAGE.PARAM=V1,V2,... (repeatable; every combination runs)")->required();
   cmd->add_option("--set", o.sets, "a fixed override for every run: STAGE.PARAM=VALUE");
+  cmd->add_option("--scene", o.scene, kSceneHelp);
   cmd->add_option("--repeats", o.repeats, "runs per setting, with seeds seed, seed+1, ...")
       ->check(CLI::Range(1, 1000))->capture_default_str();
   cmd->add_option("--seed", o.seed, "seed of the first repeat")->check(seed_value())->capture_default_str();
@@ -91,6 +92,7 @@ Action* add_sweep_verb(CLI::App& app) {
       for (const auto& v : o.vary) axes.push_back(parse_vary(v));
       std::vector<Override> fixed;
       for (const auto& s : o.sets) fixed.push_back(parse_override(s));
+      if (!o.scene.empty()) fixed.push_back({kPipelineSceneKey, o.scene, "--scene"});
       auto settings = sweep_settings(axes);
       for (auto& s : settings) s.insert(s.begin(), fixed.begin(), fixed.end());
 

@@ -22,6 +22,11 @@ inline constexpr const char* kSetHelp =
     "override a parameter: STAGE.PARAM=VALUE (repeatable). A relative file path given here is relative to "
     "the current directory; one in the pipeline file, to that file's folder";
 
+// Help of --scene, shared by run, validate and sweep.
+inline constexpr const char* kSceneHelp =
+    "the scene file for every stage that takes a scene (replacing the pipeline's 'scene:' and the stages' own, "
+    "except those marked own_scene: true); relative to the current directory";
+
 // Exit statuses of the CLI contract.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRunFailed = 1;

@@ -46,6 +46,10 @@ struct NodeDoc {
   std::vector<ParamDoc> params;
   std::vector<InputRefDoc> inputs;
   bool background = false;  // `background: true`
+  // `own_scene: true`: the stage reads another scene than the pipeline's on
+  // purpose; it keeps its own through `scene:` and --scene.
+  bool own_scene = false;
+  SourceLocation own_scene_where;
   // a loop
   std::int64_t max_iterations = 0;
   SourceLocation max_iterations_where;
@@ -56,6 +60,9 @@ struct NodeDoc {
 struct PipelineDoc {
   std::string name;
   std::filesystem::path file;
+  // The top-level `scene: FILE` (or --scene): every stage with a `scene`
+  // parameter takes it unless it sets its own.
+  std::optional<ParamDoc> scene;
   std::vector<NodeDoc> nodes;
 };
 

@@ -39,7 +39,7 @@ class Parser {
       error(root, "a pipeline is a mapping with 'pipeline' and 'stages'");
       return doc;
     }
-    check_keys(root, {"pipeline", "description", "stages"}, "pipeline");
+    check_keys(root, {"pipeline", "description", "scene", "stages"}, "pipeline");
     if (const auto name = root["pipeline"]) {
       // The name picks the default output folder (out/<name>): an
       // identifier cannot lead it anywhere else.
@@ -47,6 +47,10 @@ class Parser {
       else
         error(name, "'pipeline' is the pipeline's name, an identifier (letters, digits, '_'; not starting with a "
                     "digit), got '" + (name.IsScalar() ? quoted_excerpt(name.Scalar()) : std::string("a list or mapping")) + "'");
+    }
+    if (const auto scene = root["scene"]) {
+      if (!scene.IsScalar()) error(scene, "'scene' is the scene file (YAML) every stage with a 'scene' parameter takes");
+      else doc.scene = ParamDoc{"scene", scene, location_of(scene, file_), false};
     }
     const auto stages = root["stages"];
     if (!stages) error(root, "the pipeline has no 'stages'");
@@ -116,7 +120,8 @@ class Parser {
       parse_loop(loop, node);
       return node;
     }
-    check_keys(item, {"id", "plugin", "params", "inputs", "background", "description"}, "stage '" + node.id + "'");
+    check_keys(item, {"id", "plugin", "params", "inputs", "background", "own_scene", "description"},
+               "stage '" + node.id + "'");
     const auto plugin = item["plugin"];
     if (!plugin) error(item, "stage '" + node.id + "' names no 'plugin' (or 'loop')");
     else if (!plugin.IsScalar()) error(plugin, "'plugin' is a plugin name");
@@ -136,6 +141,13 @@ class Parser {
       if (!background.IsScalar() || !YAML::convert<bool>::decode(background, value))
         error(background, "'background' is true or false");
       node.background = value;
+    }
+    if (const auto own_scene = item["own_scene"]) {
+      bool value = false;
+      if (!own_scene.IsScalar() || !YAML::convert<bool>::decode(own_scene, value))
+        error(own_scene, "'own_scene' is true or false");
+      node.own_scene = value;
+      node.own_scene_where = location_of(own_scene, file_);
     }
     if (const auto inputs = item["inputs"]) {
       if (!inputs.IsMap()) error(inputs, "'inputs' maps this stage's inputs to 'stage.output'");

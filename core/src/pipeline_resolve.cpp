@@ -42,6 +42,7 @@ class Resolver {
     pipeline->overrides = overrides;
     pipeline_ = pipeline.get();
     pipeline->nodes = resolve_scope(doc_.nodes, {});
+    if (diags_.empty()) check_one_scene();
     if (diags_.empty()) check_wiring(doc_.nodes);
     if (diags_.empty()) run_checks();
     if (!diags_.empty()) throw InputError(diags_);
@@ -73,6 +74,10 @@ class Resolver {
   }
 
   void apply_override(const Override& o) {
+    if (o.key == kPipelineSceneKey) {  // --scene FILE: the run's one scene
+      doc_.scene = ParamDoc{"scene", YAML::Node(o.value), SourceLocation{o.origin + " " + o.value}, true};
+      return;
+    }
     const SourceLocation where{o.origin + " " + o.key + "=" + o.value};
     const auto dot = o.key.find('.');
     if (dot == std::string::npos || dot == 0 || dot + 1 == o.key.size()) {
@@ -134,6 +139,7 @@ class Resolver {
         if (!r.stage) continue;
         r.stage->loops = loops;
         stages_[n.id] = r.stage.get();
+        in_file_order_.push_back(r.stage.get());
       }
       out.push_back(std::move(r));
     }
@@ -162,6 +168,13 @@ class Resolver {
       if (spec.default_value) s->values[spec.name] = *spec.default_value;
 
     const std::string who = "stage '" + n.id + "' (plugin " + n.plugin + ")";
+    if (n.own_scene) {
+      if (!s->params->find("scene")) error(n.own_scene_where, who + " takes no scene: 'own_scene' is for a stage "
+                                                                 "with a 'scene' parameter");
+      own_scene_.insert(n.id);
+    } else if (s->params->find("scene")) {
+      take_pipeline_scene(n);
+    }
     std::vector<std::string> names;
     for (const auto& spec : s->params->specs()) names.push_back(spec.name);
     for (const auto& p : n.params) {
@@ -208,6 +221,53 @@ class Resolver {
           std::none_of(n.params.begin(), n.params.end(), [&](const ParamDoc& p) { return p.name == spec.name; }))
         error(n.where, who + ": parameter '" + spec.name + "' names an input file and must be set");
     return s;
+  }
+
+  // The pipeline's scene goes to a stage that names none; --scene replaces
+  // the one it names, unless --set named the stage's own.
+  void take_pipeline_scene(NodeDoc& n) {
+    if (!doc_.scene) return;
+    auto own = std::find_if(n.params.begin(), n.params.end(), [](const ParamDoc& p) { return p.name == "scene"; });
+    if (own == n.params.end()) {
+      n.params.push_back(*doc_.scene);
+    } else if (doc_.scene->from_command_line && !own->from_command_line) {
+      own->value.reset(doc_.scene->value);  // reset(): the node may be an anchor other stages share
+      own->where = doc_.scene->where;
+      own->from_command_line = true;
+    }
+  }
+
+  // Every stage that takes a scene names the one the simulator simulates
+  // (its first simulator stage, in file order), unless it says `own_scene`:
+  // a chamfer against one object while the sensor touches another scores
+  // nothing the run did.
+  void check_one_scene() {
+    const auto scene_of = [](const ResolvedStage& s) -> const std::string* {
+      auto it = s.values.find("scene");
+      if (it == s.values.end()) return nullptr;
+      const auto* file = std::get_if<std::string>(&it->second);
+      return file && !file->empty() ? file : nullptr;
+    };
+    const ResolvedStage* simulator = nullptr;
+    for (const auto* s : in_file_order_)
+      if (s->plugin->category() == PluginCategory::simulation && scene_of(*s) && !own_scene_.count(s->id)) {
+        simulator = s;
+        break;
+      }
+    if (!simulator) return;
+    std::error_code ec;
+    const std::string& simulated = *scene_of(*simulator);
+    for (const auto* s : in_file_order_) {
+      const std::string* scene = scene_of(*s);
+      if (s == simulator || !scene || own_scene_.count(s->id)) continue;
+      if (*scene == simulated || fs::equivalent(*scene, simulated, ec)) continue;
+      auto where = s->param_where.find("scene");
+      error(where != s->param_where.end() ? where->second : s->where,
+            "stage '" + s->id + "' (plugin " + s->plugin->name() + ") names the scene " + absolute_text(*scene) +
+                " but stage '" + simulator->id + "' simulates " + absolute_text(simulated) +
+                ": name the scene once (top-level 'scene: FILE', or --scene FILE), or add 'own_scene: true' to "
+                "the stage if it means another scene");
+    }
   }
 
   // Relative input files are relative to the pipeline file's folder (to the
@@ -500,6 +560,8 @@ class Resolver {
   ResolvedPipeline* pipeline_ = nullptr;
   std::map<std::string, NodeInfo> nodes_;
   std::map<std::string, ResolvedStage*> stages_;
+  std::vector<ResolvedStage*> in_file_order_;
+  std::set<std::string> own_scene_;  // stages with `own_scene: true`
   std::map<std::string, ResolvedLoop*> loops_;
   std::map<const std::vector<NodeDoc>*, std::vector<std::size_t>> order_;
 };

@@ -22,6 +22,7 @@ class Chamfer final : public Stage {
   std::optional<std::int64_t> samples_, gt_to_est_samples_;
   std::int64_t sample_seed_ = 0;
   double fscore_threshold_mm_ = scoring::kDefaultFscoreThresholdMm;
+  scoring::Visibility visible_ = scoring::Visibility::all;
   std::optional<scoring::GroundTruthFile> file_;  // from check until configure indexes it
   std::optional<scoring::GroundTruth> gt_;
   scoring::ScoreOptions options_;
@@ -46,6 +47,10 @@ class Chamfer final : public Stage {
     p.add("sample_seed", sample_seed_, std::int64_t{0})
         .at_least(0)
         .doc("seed of the mesh sampling; fixed apart from the run seed so every run meets the same ground truth");
+    p.add("visible", visible_, scoring::Visibility::all,
+          {{"all", scoring::Visibility::all}, {"from_above", scoring::Visibility::from_above}})
+        .doc("the ground truth: the whole mesh, or only what a press from above can reach (samples with no surface "
+             "above them; a closed object's sides and bottom are left out)");
     p.add("fscore_threshold_mm", fscore_threshold_mm_, scoring::kDefaultFscoreThresholdMm)
         .unit("mm")
         .above(0.0)
@@ -89,6 +94,7 @@ class Chamfer final : public Stage {
     scoring::GroundTruthOptions o;
     o.mesh_samples = static_cast<std::size_t>(samples_.value_or(0));  // 0: by area
     o.seed = static_cast<std::uint64_t>(sample_seed_);
+    o.visible = visible_;
     return o;
   }
 
@@ -127,10 +133,13 @@ class Chamfer final : public Stage {
       if (gt_->kind == scoring::GroundTruthKind::Mesh)
         what << " (mesh of " << std::fixed << std::setprecision(1) << gt_->area_mm2 << " mm^2, sampled "
              << std::setprecision(3) << gt_->sample_spacing_mm() << " mm apart on average)";
+      if (gt_->visible == scoring::Visibility::from_above)
+        what << "; visible from above: " << gt_->points.size() << " of " << gt_->points.size() + gt_->hidden_points
+             << " samples";
       ctx.log(what.str());
     }
     const bool mesh = gt_->kind == scoring::GroundTruthKind::Mesh;
-    if (!samples_ && mesh) ctx.used("samples", static_cast<std::int64_t>(gt_->points.size()));
+    if (!samples_ && mesh) ctx.used("samples", static_cast<std::int64_t>(gt_->points.size() + gt_->hidden_points));
     ctx.artifact(ArtifactRole::ground_truth, "", ground_truth_record());
   }
 
@@ -143,8 +152,12 @@ class Chamfer final : public Stage {
                                            {"points", static_cast<std::int64_t>(gt_->points.size())}};
     if (scene_) r["scene"] = absolute(*scene_);
     if (gt_->kind == scoring::GroundTruthKind::Mesh) {
-      r["samples"] = static_cast<std::int64_t>(gt_->points.size());
+      r["samples"] = static_cast<std::int64_t>(gt_->points.size() + gt_->hidden_points);  // drawn
       r["sample_seed"] = sample_seed_;
+    }
+    if (gt_->visible != scoring::Visibility::all) {
+      r["visible"] = std::string(scoring::to_string(gt_->visible));
+      r["hidden_points"] = static_cast<std::int64_t>(gt_->hidden_points);
     }
     return r;
   }

@@ -39,9 +39,11 @@ std::vector<Override> overrides_of(const py::dict& set) {
   return out;
 }
 
-Pipeline load(const std::string& file, const py::dict& set) {
+Pipeline load(const std::string& file, const py::dict& set, const std::optional<std::string>& scene) {
+  auto overrides = overrides_of(set);
+  if (scene) overrides.push_back({kPipelineSceneKey, *scene, "scene="});
   try {
-    return Pipeline::load(file, overrides_of(set), registry());
+    return Pipeline::load(file, overrides, registry());
   } catch (const InputError& e) {
     throw PipelineLoadError(e);
   }
@@ -73,9 +75,9 @@ struct Result {
   std::string out;  // the output folder, "" when the run wrote to a scratch folder
 };
 
-Result run(const std::string& file, std::uint64_t seed, const py::dict& set, const std::optional<std::string>& out,
-           const std::optional<std::vector<std::string>>& outputs, bool quiet) {
-  Pipeline pipeline = load(file, set);
+Result run(const std::string& file, std::uint64_t seed, const py::dict& set, const std::optional<std::string>& scene,
+           const std::optional<std::string>& out, const std::optional<std::vector<std::string>>& outputs, bool quiet) {
+  Pipeline pipeline = load(file, set, scene);
   RunOptions options;
   options.seed = seed;
   options.quiet = quiet;
@@ -149,13 +151,18 @@ void bind_run(py::module_& m) {
       .def_readonly("out", &Result::out, "the output folder ('' when out was None)")
       .def("__repr__", [](const Result& r) { return "<touchcloud.Result: " + std::to_string(r.metrics.size()) + " metrics, " + std::to_string(r.outputs.size()) + " outputs>"; });
   m.def("run", &run, py::arg("pipeline"), py::kw_only(), py::arg("seed") = 0, py::arg("set") = py::dict(),
-        py::arg("out") = py::none(), py::arg("outputs") = py::none(), py::arg("quiet") = true,
-        "Runs a pipeline file as `touchcloud run` does. set: {'stage.param': value} overrides; out: output folder "
+        py::arg("scene") = py::none(), py::arg("out") = py::none(), py::arg("outputs") = py::none(),
+        py::arg("quiet") = true,
+        "Runs a pipeline file as `touchcloud run` does. set: {'stage.param': value} overrides; scene: the scene "
+        "file for every stage that takes one (as --scene); out: output folder "
         "(None: files go to a temporary folder removed afterwards); outputs: 'stage.port' names to return (None: "
         "every output some stage reads).");
   m.def(
-      "validate", [](const std::string& file, const py::dict& set) { load(file, set); }, py::arg("pipeline"),
-      py::kw_only(), py::arg("set") = py::dict(),
+      "validate",
+      [](const std::string& file, const py::dict& set, const std::optional<std::string>& scene) {
+        load(file, set, scene);
+      },
+      py::arg("pipeline"), py::kw_only(), py::arg("set") = py::dict(), py::arg("scene") = py::none(),
       "Loads and checks a pipeline as `touchcloud validate` does; raises PipelineError with every problem found.");
   m.def(
       "plugins",

@@ -2,8 +2,9 @@
 // A user's object, one command from its mesh (STL, OBJ or PLY, any unit via
 // --scale) to DIR/NAME/: the mesh as given, a scene that centres it on the
 // table (its footprint around the origin, its bottom at z = 0) with a
-// workspace and grid over its footprint, and ground truth sampled from the
-// object as placed. Then it checks the object against the sensor: the size
+// workspace and grid over its footprint. The scene is the ground truth too
+// (the chamfer stage and `touchcloud score --gt` sample its object as
+// placed, densely), so no sparser copy is written. Then it checks the object against the sensor: the size
 // (a unit mistake), the gel's reach at every grid cell, and says what does
 // not fit. Exit 0 (warnings on stderr), 2 bad input, 1 a failed write.
 #include <algorithm>
@@ -18,8 +19,8 @@
 #include "touchcloud/simulation/objects/reach_check.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/file_write.hpp"
-#include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/scoring/visible_surface.hpp"
 #include "touchcloud/types/scene_object.hpp"
 #include "touchcloud/types/workspace.hpp"
 
@@ -29,8 +30,6 @@ using namespace touchcloud;
 namespace {
 
 constexpr double kGelDiameterMm = 65.0;            // the GelStereo Palm 2.0 of the sample scenes
-constexpr double kGroundTruthPointsPerMm2 = 2.0;   // as make_sample_objects
-constexpr std::uint64_t kGroundTruthSeed = 20240101;
 
 // Numbers as a person writes them: 65, 0.08, never 65.000000 or -0.
 std::string num(double v) {
@@ -84,15 +83,12 @@ std::string scene_yaml(const Options& o, const Eigen::Vector3d& shift, const Eig
 }
 
 // What does not fit, one line each; empty when all does.
-std::vector<std::string> check_fit(const ObjectSpec& spec, const Eigen::AlignedBox3d& placed, int gx, int gy) {
+std::vector<std::string> check_fit(const ObjectSpec& spec, const scoring::TriangleMesh& mesh,
+                                   const Eigen::AlignedBox3d& placed, int gx, int gy) {
   std::vector<std::string> problems;
   const Eigen::Vector3d size = placed.sizes();
-  const double largest = size.maxCoeff();
-  if (largest < 5.0)
-    problems.push_back("the object is only " + num(largest) +
-                       " mm across: is the mesh in metres or centimetres? (--scale 1000 or 10)");
-  if (largest > 2000.0)
-    problems.push_back("the object is " + num(largest) + " mm across: is the mesh in micrometres? (--scale 0.001)");
+  if (auto why = scoring::unit_mistake(mesh))
+    problems.push_back(*why + (size.maxCoeff() < 5.0 ? " (--scale 1000 or 10)" : " (--scale 0.001)"));
   if (size.x() < kGelDiameterMm && size.y() < kGelDiameterMm)
     problems.push_back("the footprint is smaller than the gel (" + num(kGelDiameterMm) +
                        " mm): every touch covers the whole object");
@@ -152,11 +148,7 @@ int make_scene(const Options& o) {
   const scoring::TriangleMesh mesh = read_placed_object_mesh(spec);
   const double area = scoring::surface_area_mm2(mesh);
   if (!(area > 0)) throw InputError(o.mesh.string() + ": the mesh has no surface area");
-  const auto count = static_cast<std::size_t>(std::max(1000.0, std::round(area * kGroundTruthPointsPerMm2)));
-  PointCloud truth;
-  for (const auto& p : scoring::sample_surface(mesh, count, kGroundTruthSeed, 1))
-    truth.push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
-  const std::vector<std::string> problems = check_fit(spec, placed, gx, gy);
+  const std::vector<std::string> problems = check_fit(spec, mesh, placed, gx, gy);
 
   // Everything is computed before the first file is written.
   std::error_code ec;
@@ -166,9 +158,8 @@ int make_scene(const Options& o) {
   if (fs::absolute(mesh_copy).lexically_normal() != fs::absolute(o.mesh).lexically_normal())
     fs::copy_file(o.mesh, mesh_copy, fs::copy_options::overwrite_existing);
   write_file(folder / "scene.yaml", scene_yaml(o, shift, placed, gx, gy));
-  write_cloud_file(folder / "ground_truth.pcd", truth, true);
-  std::cout << "wrote " << folder.string() << "/: scene.yaml, " << o.mesh.filename().string()
-            << ", ground_truth.pcd (" << truth.size() << " points); object " << placed.sizes().x() << " x "
+  std::cout << "wrote " << folder.string() << "/: scene.yaml, " << o.mesh.filename().string() << "; object "
+            << placed.sizes().x() << " x "
             << placed.sizes().y() << " x " << placed.sizes().z() << " mm, grid " << gx << " x " << gy << "\n";
   for (const auto& p : problems) std::cerr << "warning: " << p << "\n";
   return 0;
@@ -178,7 +169,7 @@ int make_scene(const Options& o) {
 
 int main(int argc, char** argv) {
   ignore_file_size_signal();  // a file-size limit fails a write as a full disk does
-  CLI::App app{"From a mesh to a scene and its ground truth: DIR/NAME/{scene.yaml, mesh, ground_truth.pcd}"};
+  CLI::App app{"From a mesh to a scene, which is also its ground truth: DIR/NAME/{scene.yaml, mesh}"};
   Options o;
   app.add_option("mesh", o.mesh, "the object's mesh (.stl, .obj, .ply with faces)")->required();
   app.add_option("--name", o.name, "the object's name: the folder and the scene's name")->required();

@@ -93,6 +93,34 @@ TEST(Cli, SetErrorsNameTheKey) {
   EXPECT_TRUE(has_line_starting(r2.err, "touchcloud: error: --set 'nonsense' must be STAGE.PARAM=VALUE")) << r2.err;
 }
 
+TEST(Cli, SceneNamesTheObjectOfEveryStageAndAMismatchIsRefused) {
+  const std::string fox = (touchcloud::test::source_dir() / "pipelines/fox_mask_active.yaml").string();
+  const std::string wave = (touchcloud::test::source_dir() / "sample_clouds/wave_surface/scene.yaml").string();
+  // The simulator alone on another object: the planner and the score would read the fox mask.
+  const auto mismatch = run_cli({"validate", fox, "--set", "sensor.scene=" + wave});
+  EXPECT_EQ(mismatch.exit_code, 2);
+  EXPECT_TRUE(has_line_starting(mismatch.err, fox + ":")) << mismatch.err;
+  EXPECT_NE(mismatch.err.find("stage 'score' (plugin chamfer) names the scene"), std::string::npos) << mismatch.err;
+  EXPECT_NE(mismatch.err.find("but stage 'sensor' simulates " + wave), std::string::npos) << mismatch.err;
+  const auto one_scene = run_cli({"validate", fox, "--scene", wave});
+  EXPECT_EQ(one_scene.exit_code, 0) << one_scene.err;
+  // run and sweep take it too: a scene that is not there is refused before anything runs.
+  touchcloud::test::TempDir dir;
+  const std::string missing = (dir / "no_scene.yaml").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", fox, "--scene", missing, "--out", (dir / "run").string()},
+        std::vector<std::string>{"sweep", fox, "--scene", missing, "--vary", "dedup.threshold_mm=1.8", "--out",
+                                 (dir / "sweep").string()}}) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args[0];
+    EXPECT_NE(r.err.find("--scene " + missing + ": error: stage 'plan' (plugin next_touch), parameter 'scene': "
+                         "input file " + missing + " does not exist"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
 TEST(Cli, UsageErrorsAndMissingFilesExitTwo) {
   auto r = run_cli({"run"});
   EXPECT_EQ(r.exit_code, 2);

@@ -264,6 +264,46 @@ TEST_F(ScoreVerb, MeshGroundTruthIsSampledReproducibly) {
   EXPECT_LT(a, 2.1);
 }
 
+// A scene is ground truth as simulated (a 20 mm cube at scale 2 is 40 mm);
+// from_above keeps its top, which the estimate (the top, 1 mm apart) covers,
+// and leaves out the walls and bottom that no press from above reaches.
+TEST_F(ScoreVerb, ASceneIsGroundTruthAndFromAboveScoresWhatAPressCanSee) {
+  write_file(dir_ / "cube.obj", touchcloud::test::cube_obj(20));
+  write_file(dir_ / "scene.yaml", "object: {mesh: cube.obj, scale: 2}\n");
+  save_pcd(dir_ / "top.pcd", touchcloud::test::cube_top(40, 41));
+  const auto score = [&](const std::string& visible) {
+    const auto r = run_cli({"score", "--gt", path("scene.yaml"), path("top.pcd"), "--json", "--samples", "96000",
+                            "--visible", visible});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return json::parse(r.out)[0];
+  };
+  const json all = score("all"), above = score("from_above");
+  EXPECT_EQ(all["ground_truth"]["visible"], "all");
+  EXPECT_DOUBLE_EQ(all["ground_truth"]["area_mm2"].get<double>(), 9600.0);
+  // On the surface, 10 samples per mm^2 leave 1 / (2 sqrt(10)) = 0.16 mm (docs/scoring.md).
+  EXPECT_LT(all["metrics"]["chamfer_est_to_gt_mm"].get<double>(), 0.2);
+  EXPECT_LT(all["metrics"]["recall"].get<double>(), 0.3);  // the top and a band of the walls: ~0.22
+  EXPECT_EQ(above["ground_truth"]["visible"], "from_above");
+  EXPECT_NEAR(above["ground_truth"]["hidden_points"].get<double>() / 96000, 5.0 / 6, 0.01);
+  EXPECT_GT(above["metrics"]["recall"].get<double>(), 0.99);
+  EXPECT_LT(above["metrics"]["chamfer_gt_to_est_mm"].get<double>(), 0.5);
+  const auto table = run_cli({"score", "--gt", path("scene.yaml"), path("top.pcd"), "--samples", "96000",
+                              "--visible", "from_above"});
+  EXPECT_NE(table.out.find("visible from above only"), std::string::npos) << table.out;
+  EXPECT_EQ(run_cli({"score", "--gt", path("gt.pcd"), path("est.pcd"), "--visible", "from_above"}).exit_code, 2);
+}
+
+// A mesh in metres would score as a speck, every distance the object's size.
+TEST_F(ScoreVerb, AMeshWhoseSizeSuggestsAnotherUnitIsRefused) {
+  write_file(dir_ / "metres.obj", touchcloud::test::cube_obj(0.02));
+  const auto r = run_cli({"score", "--gt", path("metres.obj"), path("est.pcd")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("the object is only 0.02 mm across: is the mesh in metres or centimetres?"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("touchcloud-make-scene"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
 TEST_F(ScoreVerb, HelpStatesTheExitStatuses) {
   const auto r = run_cli({"score", "--help"});
   EXPECT_EQ(r.exit_code, 0);

@@ -77,6 +77,16 @@ def test_set_overrides_reach_the_stage(source):
         touchcloud.run(pipeline, set={"thin.leaf_size_mm": -1.0})
 
 
+def test_scene_names_the_object_of_every_stage(source):
+    pipeline = str(source / "pipelines/fox_mask_active.yaml")
+    wave = str(source / "sample_clouds/wave_surface/scene.yaml")
+    touchcloud.validate(pipeline, scene=wave)
+    with pytest.raises(touchcloud.PipelineError, match="stage 'score' \\(plugin chamfer\\) names the scene"):
+        touchcloud.validate(pipeline, set={"sensor.scene": wave})
+    with pytest.raises(touchcloud.PipelineError, match="scene=.*no_scene.yaml"):
+        touchcloud.run(pipeline, scene=str(source / "no_scene.yaml"))
+
+
 @pytest.mark.parametrize("key", [1, None, ("thin", "leaf_size_mm")])
 def test_a_set_key_that_is_no_string_is_a_type_error_naming_it(source, key):
     pipeline = str(source / "pipelines/downsample_cloud.yaml")

@@ -10,6 +10,23 @@
 
 namespace touchcloud::test {
 
+std::string cube_obj(double side) {
+  std::string obj;
+  for (int i = 0; i < 8; ++i)
+    obj += "v " + std::to_string(side * (i & 1)) + " " + std::to_string(side * ((i >> 1) & 1)) + " " +
+           std::to_string(side * ((i >> 2) & 1)) + "\n";
+  return obj + "f 1 2 4 3\nf 5 6 8 7\nf 1 2 6 5\nf 3 4 8 7\nf 1 3 7 5\nf 2 4 8 6\n";
+}
+
+PointCloud cube_top(double side, int n) {
+  PointCloud c;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      c.push_back(pcl::PointXYZ(static_cast<float>(side * i / (n - 1)), static_cast<float>(side * j / (n - 1)),
+                                static_cast<float>(side)));
+  return c;
+}
+
 PointCloud grid_cloud(int n, double spacing_mm) {
   PointCloud cloud;
   for (int i = 0; i < n; ++i)

@@ -40,6 +40,10 @@ struct Override {
   std::string origin = "--set";  // the option it came from, for messages
 };
 Override parse_override(const std::string& text);  // "k=v"; InputError otherwise
+// The key of an Override that sets the pipeline's scene (`--scene FILE`):
+// every stage with a `scene` parameter takes it, except those that say
+// `own_scene: true` or whose own was set by --set.
+inline constexpr const char* kPipelineSceneKey = "scene";
 
 class ResolvedPipeline;  // private to the runtime
 struct RunOptions;

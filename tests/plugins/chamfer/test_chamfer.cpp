@@ -152,6 +152,24 @@ TEST_F(Chamfer, TheScenesObjectIsTheGroundTruthScaledAndPosed) {
   EXPECT_GT(as_file, 7.0);
 }
 
+// visible: from_above scores against what a press from above can reach of a
+// closed cube (its top), and says so in its ground-truth record; the default
+// keeps the whole surface and the record as it was.
+TEST_F(Chamfer, FromAboveKeepsOnlyWhatAPressCanSee) {
+  test::write_file(dir_ / "cube.obj", test::cube_obj(20));
+  test::write_file(dir_ / "scene.yaml", "object: {mesh: cube.obj}\n");
+  test::save_pcd(dir_ / "est.pcd", test::cube_top(20, 21));
+  const RunResult all = run(pipeline("{scene: scene.yaml, samples: 24000}"));
+  const RunResult above = run(pipeline("{scene: scene.yaml, samples: 24000, visible: from_above}"));
+  EXPECT_LT(series(all, "score.recall").values.at(0), 0.3);
+  EXPECT_GT(series(above, "score.recall").values.at(0), 0.99);
+  const auto record = [](const RunResult& r) { return r.record.artifacts.at(0).attributes; };
+  EXPECT_EQ(record(all).count("visible"), 0u);
+  EXPECT_EQ(std::get<std::string>(record(above).at("visible")), "from_above");
+  EXPECT_NEAR(static_cast<double>(std::get<std::int64_t>(record(above).at("hidden_points"))) / 24000, 5.0 / 6, 0.01);
+  EXPECT_EQ(std::get<std::int64_t>(record(above).at("samples")), 24000);
+}
+
 TEST_F(Chamfer, SceneAndGroundTruthAreOneOrTheOther) {
   test::write_file(dir_ / "square.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3 4\n");
   test::write_file(dir_ / "scene.yaml", "object: {mesh: square.obj}\n");

@@ -1,8 +1,9 @@
 // touchcloud-make-scene: a user's mesh in metres becomes a scene whose object
-// sits centred on the table in mm, with ground truth of the object as placed;
-// what does not fit (the unit, the gel's reach) is said, and bad input is
+// sits centred on the table in mm, and is the ground truth of the object as
+// placed (no sparse sampled copy beside it); what does not fit (the unit, the gel's reach) is said, and bad input is
 // exit 2 with nothing written. apex_gap_mm is the reach check under it.
 #include "cloud_files.hpp"
+#include "touchcloud/scoring/ground_truth.hpp"
 #include "touchcloud/simulation/objects/reach_check.hpp"
 #include "touchcloud/simulation/scene/scene.hpp"
 #include "sim_fixture.hpp"
@@ -28,7 +29,7 @@ TEST(ReachCheck, TheGelCannotReachTheTableInARingsHoleButReachesItsTop) {
   EXPECT_NEAR(simulation::apex_gap_mm(*ring, {30, 0}, 32.5), 0.0, 1e-9);
 }
 
-TEST(MakeScene, AMeshInMetresBecomesACentredSceneWithItsGroundTruthAndTheReachIsChecked) {
+TEST(MakeScene, AMeshInMetresBecomesACentredSceneThatIsItsGroundTruthAndTheReachIsChecked) {
   test::TempDir dir;
   test::write_file(dir / "ring.obj", test::ring_obj(0.001));
   const auto r = make_scene({(dir / "ring.obj").string(), "--name", "ring", "--scale", "1000", "--out",
@@ -42,12 +43,15 @@ TEST(MakeScene, AMeshInMetresBecomesACentredSceneWithItsGroundTruthAndTheReachIs
   EXPECT_EQ(scene.name, "ring");
   EXPECT_EQ(scene.object.scale, 1000);
   EXPECT_EQ(scene.workspace.cells_x, 10);
-  const PointCloud truth = test::load_cloud(dir / "objects/ring/ground_truth.pcd");
-  ASSERT_GT(truth.size(), 1000u);
-  for (const auto& p : truth.points) {
-    ASSERT_LE(std::hypot(p.x, p.y), 40.01);
-    ASSERT_GE(p.z, -1e-3);
-    ASSERT_LE(p.z, 50.01);
+  // The scene is the ground truth, sampled as densely as the chamfer stage samples it.
+  EXPECT_FALSE(fs::exists(dir / "objects/ring/ground_truth.pcd"));
+  const scoring::GroundTruth truth = scoring::load_ground_truth(dir / "objects/ring/scene.yaml");
+  ASSERT_GE(truth.points.size(), scoring::kMinMeshSamples);
+  EXPECT_NEAR(truth.sample_spacing_mm(), 0.1, 1e-3);
+  for (const auto& p : truth.points.points()) {
+    ASSERT_LE(std::hypot(p.x(), p.y()), 40.01);
+    ASSERT_GE(p.z(), -1e-3);
+    ASSERT_LE(p.z(), 50.01);
   }
 }
 

@@ -17,10 +17,13 @@ std::size_t default_mesh_samples(double area_mm2) {
 const char* to_string(GroundTruthKind kind) { return kind == GroundTruthKind::Mesh ? "mesh" : "cloud"; }
 
 double GroundTruth::sample_spacing_mm() const {
-  return kind == GroundTruthKind::Mesh ? std::sqrt(area_mm2 / static_cast<double>(points.size())) : 0.0;
+  return kind == GroundTruthKind::Mesh ? std::sqrt(area_mm2 / static_cast<double>(points.size() + hidden_points))
+                                       : 0.0;
 }
 
 GroundTruthFile read_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options) {
+  const std::string ext = file.extension().string();
+  if (ext == ".yaml" || ext == ".yml" || ext == ".YAML" || ext == ".YML") return read_scene_ground_truth(file);
   GroundTruthFile out;
   out.file = file;
   if (is_mesh_file(file)) {
@@ -55,6 +58,9 @@ GroundTruthFile read_scene_ground_truth(const std::filesystem::path& scene_file)
 }
 
 GroundTruth index_ground_truth(GroundTruthFile file, const GroundTruthOptions& options) {
+  if (file.kind == GroundTruthKind::Cloud && options.visible != Visibility::all)
+    throw InputError(file.file.string() + ": a cloud has no surfaces to hide one another; visible " +
+                     to_string(options.visible) + " needs a mesh or a scene");
   if (file.kind == GroundTruthKind::Cloud)
     return GroundTruth{file.file, GroundTruthKind::Cloud, file.dropped_nonfinite, 0.0, 0,
                        NearestPointIndex(std::move(file.cloud), options.threads)};
@@ -65,8 +71,15 @@ GroundTruth index_ground_truth(GroundTruthFile file, const GroundTruthOptions& o
   } catch (const InputError& e) {
     throw InputError(file.file.string() + ": " + e.what());
   }
+  std::size_t hidden = 0;
+  if (options.visible == Visibility::from_above) {
+    Points seen = visible_from_above(file.mesh, samples);
+    hidden = samples.size() - seen.size();
+    samples = std::move(seen);
+    if (samples.empty()) throw InputError(file.file.string() + ": no sample of the mesh is visible from above");
+  }
   return GroundTruth{file.file, GroundTruthKind::Mesh, 0, file.area_mm2, file.mesh.triangles.size(),
-                     NearestPointIndex(std::move(samples), options.threads)};
+                     NearestPointIndex(std::move(samples), options.threads), options.visible, hidden};
 }
 
 GroundTruth load_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options) {

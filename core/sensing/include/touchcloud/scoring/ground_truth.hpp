@@ -9,6 +9,7 @@
 #include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/scoring/nearest_point_index.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/scoring/visible_surface.hpp"
 
 namespace touchcloud::scoring {
 
@@ -30,6 +31,9 @@ struct GroundTruthOptions {
   std::uint64_t seed = 0;        // mesh sampling
   NonFinitePoints nonfinite = NonFinitePoints::Refuse;  // clouds
   int threads = 0;               // 0: all
+  // from_above: of a mesh's samples, only those a press from above can
+  // reach (visible_from_above); a cloud is refused, having no surfaces.
+  Visibility visible = Visibility::all;
 };
 
 struct GroundTruth {
@@ -39,8 +43,10 @@ struct GroundTruth {
   double area_mm2 = 0;                // meshes
   std::size_t triangles = 0;          // meshes
   NearestPointIndex points;           // the points scored against, indexed
+  Visibility visible = Visibility::all;
+  std::size_t hidden_points = 0;      // samples dropped as not visible
 
-  // Mean spacing of the samples on a mesh, sqrt(area / samples); 0 for clouds.
+  // Mean spacing of the samples on a mesh, sqrt(area / samples drawn); 0 for clouds.
   double sample_spacing_mm() const;
 };
 
@@ -57,15 +63,17 @@ struct GroundTruthFile {
 };
 
 // Reads `file`: .stl, .obj and .ply with faces are meshes (to be sampled),
-// .pcd and .ply without faces are clouds. Throws InputError naming the file,
-// also for a mesh with no surface area.
+// .pcd and .ply without faces are clouds, .yaml and .yml are scenes (their
+// object as read_scene_ground_truth places it). Throws InputError naming the
+// file, also for a mesh with no surface area.
 GroundTruthFile read_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options = {});
 // The object of a scene file as ground truth: its mesh scaled and posed as
 // the simulator places it, so a simulated run cannot be scored against an
 // object it did not touch. InputError naming the scene when its object is an
 // analytic surface (give a ground-truth file for those) or the mesh is bad.
 GroundTruthFile read_scene_ground_truth(const std::filesystem::path& scene_file);
-// Samples a mesh (options.mesh_samples, seed) and indexes the points.
+// Samples a mesh (options.mesh_samples, seed), keeps the visible samples
+// (options.visible) and indexes the points.
 GroundTruth index_ground_truth(GroundTruthFile file, const GroundTruthOptions& options = {});
 // Both of the above.
 GroundTruth load_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options = {});

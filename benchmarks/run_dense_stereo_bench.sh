@@ -49,7 +49,7 @@ else:
     print(f"peer: OpenCV {peer['opencv']} Python binding (NumPy {peer['numpy']}, Python {peer['python']}), "
           f"{peer['opencv_threads']} OpenCV thread")
 cpu = lambda name: ours[name]["cpu_time"]
-print("Wall time (ms per frame), and in brackets CPU time, which a loaded machine disturbs less:")
+print("Wall time (ms per frame), and in brackets CPU time, which other jobs on the machine disturb less:")
 print("| matcher | size | stage, no LR check | stage, LR check | same calls, C++ | same calls, Python | stage / Python |")
 print("|---|---|---|---|---|---|---|")
 for method in ("sgbm", "bm"):

@@ -9,7 +9,7 @@ on the same rendered pairs, one OpenCV thread.
 DATA_DIR holds pair_<size>_{left,right}.png (bench_dense_stereo --write-data).
 Each figure is the fastest of N runs of the mean time per frame, as Google
 Benchmark's repetitions of ours: wall time, and this process's CPU time
-(which a loaded machine disturbs less).
+(which other jobs on the machine disturb less).
 """
 import argparse
 import json

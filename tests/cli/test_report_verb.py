@@ -318,7 +318,7 @@ def check_in_browser(report, tmp_path, expected, looked_at=None):
         # Drawn: the 3D view and pictures a few percent of their pixels off the background, in
         # many colours; a plot's marks (its area only: axes and labels lie outside it) a few
         # hundred pixels (the 4 points and the front of a 4-run Pareto plot: 0.17 to 0.6 %, fewer
-        # where a loaded machine's wall times put points on top of each other; blank: 0).
+        # where wall times measured under load put points on top of each other; blank: 0).
         least = 0.05 if name == "3d" else 0.01 if name.startswith("image") else 0.0005
         assert drawn.mean() > least, (name, drawn.mean())
         assert colours >= (200 if name == "3d" else 2), (name, colours)

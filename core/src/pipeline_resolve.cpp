@@ -272,7 +272,8 @@ class Resolver {
 
   // Relative input files are relative to the pipeline file's folder (to the
   // working directory for --set); they must exist and be readable, except a
-  // per-iteration pattern ("frame_{iteration}.png"), whose folder must exist.
+  // per-iteration pattern ("frame_{iteration}.png") or a glob in the file
+  // name ("frames/*.png"), whose folder must exist.
   // Where a relative path was taken from, for "does not exist" messages.
   std::string relative_to(const fs::path& given, const ParamDoc& p) const {
     if (!given.is_relative()) return "";
@@ -287,9 +288,11 @@ class Resolver {
     if (path.is_relative() && !p.from_command_line) path = doc_.file.parent_path() / path;
     path = path.lexically_normal();
     std::error_code ec;
-    if (path.string().find(kIterationField) != std::string::npos) {
-      // One file per loop iteration: the stage reads them as the loop runs;
-      // here only the folder can be checked.
+    const bool glob = path.filename().string().find_first_of("*?[") != std::string::npos && !fs::exists(path, ec);
+    if (path.string().find(kIterationField) != std::string::npos || glob) {
+      // One file per loop iteration ("{iteration}"), or the files a glob
+      // matches: the stage lists and reads them; here only the folder can be
+      // checked.
       if (!fs::is_directory(path.parent_path(), ec)) {
         error(p.where, who + ", parameter '" + spec.name + "': folder " + absolute_text(path.parent_path()) +
                            " does not exist" + relative_to(given, p));

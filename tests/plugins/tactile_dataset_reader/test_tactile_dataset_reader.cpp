@@ -53,3 +53,20 @@ TEST(TactileDatasetReader, AJpegCutShortIsRefusedNamingTheFile) {
   EXPECT_NE(message.find("dataset file " + image.string() + " cannot be read: not a whole JPEG"), std::string::npos)
       << message;
 }
+
+// OpenCV would turn a grey or 16-bit image into 8-bit colour without a
+// word: refused, naming the file.
+TEST(TactileDatasetReader, AGreyOrSixteenBitImageIsRefusedNamingTheFile) {
+  TempDir dir;
+  const auto info = write_tactile_dataset(dir, 2);
+  const fs::path image = info.parent_path() / "train/images/000000.png";
+  for (const auto& [written, said] : {std::pair{cv::Mat(24, 32, CV_8UC1, cv::Scalar(100)), "is a grey image"},
+                                      std::pair{cv::Mat(24, 32, CV_16UC3, cv::Scalar(900, 9000, 40000)),
+                                                "holds 16-bit samples"}}) {
+    ASSERT_TRUE(cv::imwrite(image.string(), written));
+    StageHarness reader("tactile_dataset_reader", {{"dataset", info.string()}});
+    reader.configure();
+    const std::string message = input_error_of([&] { reader.process({}, {"image"}); });
+    EXPECT_NE(message.find("dataset file " + image.string() + " " + said), std::string::npos) << message;
+  }
+}

@@ -12,6 +12,7 @@
 #include <zlib.h>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/path_text.hpp"
@@ -175,6 +176,18 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
   }
   cv::Mat image = cv::imdecode(encoded, flags);
   if (image.empty()) fail("not an image format OpenCV knows, or corrupt");
+  return image;
+}
+
+cv::Mat read_colour_image_file(const fs::path& file, const std::string& name) {
+  cv::Mat image = read_image_file(file, cv::IMREAD_UNCHANGED, name);
+  const std::string who = name.empty() ? "the image " + file.string() : name;
+  if (image.depth() != CV_8U)
+    throw InputError(who + " holds " + (image.depth() == CV_16U ? std::string("16-bit") : cv::typeToString(image.type())) +
+                     " samples; an 8-bit colour image is needed (export the camera's frames as 8-bit PNG or JPEG)");
+  if (image.channels() == 1 || image.channels() == 2)
+    throw InputError(who + " is a grey image; a colour (BGR) image is needed here");
+  if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
   return image;
 }
 

@@ -9,7 +9,8 @@ namespace touchcloud::io {
 
 cv::Mat read_dataset_image(const std::filesystem::path& file, int type, const TactileDatasetInfo& info,
                            const std::string& info_file) {
-  const cv::Mat image = read_image_file(file, type == CV_8UC3 ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED, "dataset file " + file.string());
+  const std::string name = "dataset file " + file.string();
+  const cv::Mat image = type == CV_8UC3 ? read_colour_image_file(file, name) : read_image_file(file, cv::IMREAD_UNCHANGED, name);
   if (image.type() != type)
     throw InputError("dataset file " + file.string() + " is " + cv::typeToString(image.type()) + "; expected " +
                      cv::typeToString(type));

@@ -21,4 +21,11 @@ namespace touchcloud {
 // `name` says which file (default: "the image FILE").
 cv::Mat read_image_file(const std::filesystem::path& file, int flags, const std::string& name = {});
 
+// An 8-bit BGR colour image (CV_8UC3; an alpha channel is dropped), read
+// with read_image_file's checks. InputError, naming the file, for a grey
+// image (colour is needed: a GelSight-type image's colours are its
+// gradients) and for 16-bit samples (converting them would hide a wrong
+// export), instead of OpenCV's silent conversion.
+cv::Mat read_colour_image_file(const std::filesystem::path& file, const std::string& name = {});
+
 }  // namespace touchcloud

@@ -4,9 +4,16 @@
 // contact mask from the height and the difference to the reference image.
 // `border: free` integrates without assuming a zero height on the image's
 // border (DCT, anchored on the flat pixels), for contacts larger than the pad.
+// Each map is checked (imaging/depth_checks.hpp: height beyond the gel,
+// contact nearly everywhere, a reference of another exposure): `checks`
+// says whether a finding warns (a metric and a note in summary.json, a log
+// line) or stops the run as bad input.
+#include <set>
+
 #include <fftw3.h>
 #include <opencv2/core/version.hpp>
 
+#include "touchcloud/imaging/depth_checks.hpp"
 #include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
@@ -22,11 +29,16 @@ const LibraryVersion fftw_library("fftw", ::fftw_version);  // "fftw-3.3.10-..."
 std::string size_text(int width, int height) { return std::to_string(width) + " x " + std::to_string(height) + " px"; }
 }  // namespace
 
+enum class CheckAction { Warn, Error };
+
 class PhotometricDepth final : public Stage {
   std::string calibration_file_;
   imaging::DepthOptions options_;
+  CheckAction checks_ = CheckAction::Warn;
+  imaging::DepthCheckLimits limits_;  // the gel's thickness from the calibration, at check
   sensor::PhotometricCalibration calibration_;  // read at check
   std::unique_ptr<imaging::PhotometricDepthSolver> solver_;
+  std::set<std::string> noted_;  // the notes written so far
 
   void declare_parameters(ParameterSet& p) override {
     p.add("calibration", calibration_file_, std::string())
@@ -42,6 +54,14 @@ class PhotometricDepth final : public Stage {
         .doc("contact where the height exceeds this ...");
     p.add("contact_grey", options_.contact_grey, 6.0).unit("grey levels").at_least(0).below(255)
         .doc("... and the largest channel difference to the reference (5 x 5 mean) exceeds this");
+    p.add("checks", checks_, CheckAction::Warn, {{"warn", CheckAction::Warn}, {"error", CheckAction::Error}})
+        .doc("a map that fails a check (height beyond the gel's thickness, contact nearly everywhere, a reference of "
+             "another exposure): warn (metric depth_warnings, a note, a log line) or stop the run as bad input");
+    p.add("max_contact_share", limits_.max_contact_share, 0.9).range(0, 1)
+        .doc("check: contact over more than this share of the image is suspect (a wrong reference)");
+    p.add("max_exposure_grey", limits_.max_exposure_grey, 8.0).unit("grey levels").at_least(0)
+        .doc("check: the image's and the reference's mean brightness where the gel is flat (outside the contact) "
+             "may differ by this much");
   }
 
   void declare_ports(PortSet& ports) override {
@@ -51,6 +71,10 @@ class PhotometricDepth final : public Stage {
     ports.metric("max_height_mm", "mm", "greatest height of this map");
     ports.metric("flat_pixels", "px", "pixels whose colour difference was too small for a gradient");
     ports.metric("contact_share", "1", "share of the pixels in contact");
+    ports.metric("exposure_difference_grey", "grey levels",
+                 "image minus reference, mean brightness where the gel is flat (outside the contact)");
+    ports.metric("depth_warnings", "checks", "checks this map failed (see the notes height_over_gel, "
+                 "contact_everywhere, exposure_mismatch)").lower_is_better();
   }
 
   void on_check(RunContext&) override {
@@ -63,6 +87,7 @@ class PhotometricDepth final : public Stage {
       throw ParameterError("calibration", calibration_file_ + ": image size " +
                                               size_text(calibration_.width_px, calibration_.height_px) +
                                               " is too small (at least 3 x 3)");
+    limits_.gel_thickness_mm = calibration_.gel_thickness_mm;
   }
 
   void on_configure(RunContext& ctx) override {
@@ -90,6 +115,20 @@ class PhotometricDepth final : public Stage {
                        calibration_file_ + " is of sensor '" + calibration_.sensor + "'");
   }
 
+  // Each kind of finding keeps its first message as a note; with
+  // `checks: error` the first finding stops the run.
+  void report_findings(const imaging::DepthCheckResult& checked, long index, RunContext& ctx) {
+    for (const auto& f : checked.findings) {
+      const std::string message = "frame " + std::to_string(index) + ": " + f.message;
+      if (checks_ == CheckAction::Error) throw InputError(message + " (checks: error)");
+      const char* note = f.problem == imaging::DepthProblem::HeightOverGel       ? "height_over_gel"
+                         : f.problem == imaging::DepthProblem::ContactEverywhere ? "contact_everywhere"
+                                                                                 : "exposure_mismatch";
+      if (noted_.insert(note).second) ctx.note(note, message);
+      ctx.log("warning: " + message);
+    }
+  }
+
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& image = io.input<MonoColourFramePtr>("image");
     const auto& reference = io.input<MonoColourFramePtr>("reference");
@@ -106,11 +145,14 @@ class PhotometricDepth final : public Stage {
     map->timestamp_s = image->timestamp_s;
     map->index = image->index;
     map->pose = image->pose;
-    double max_height = 0;
-    cv::minMaxLoc(r.height_mm, nullptr, &max_height);
-    ctx.metric("max_height_mm", max_height, "mm");
+    const imaging::DepthCheckResult checked =
+        imaging::check_depth(r.height_mm, r.contact_mask, image->image, reference->image, limits_);
+    report_findings(checked, image->index, ctx);
+    ctx.metric("max_height_mm", checked.max_height_mm, "mm");
     ctx.metric("flat_pixels", static_cast<double>(r.flat_pixels), "px");
-    ctx.metric("contact_share", cv::countNonZero(r.contact_mask) / static_cast<double>(r.contact_mask.total()), "1");
+    ctx.metric("contact_share", checked.contact_share, "1");
+    ctx.metric("exposure_difference_grey", checked.exposure_difference_grey, "grey levels");
+    ctx.metric("depth_warnings", static_cast<double>(checked.findings.size()), "checks");
     io.output<HeightMapPtr>("height", std::move(map));
   }
 };

@@ -6,6 +6,7 @@
 //   build/benchmarks/bin/bench_photometric_depth
 #include <benchmark/benchmark.h>
 
+#include "touchcloud/imaging/depth_checks.hpp"
 #include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/simulation/gelsight_simulation.hpp"
@@ -44,6 +45,23 @@ void BM_PhotometricDepth(benchmark::State& state) {
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PhotometricDepth)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// photometric_depth's checks of one map (imaging/depth_checks.hpp): what
+// they add to each frame.
+void BM_DepthChecks(benchmark::State& state) {
+  const auto calibration = sensor::load_photometric_calibration(
+      std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball/photometric_calibration.yaml");
+  imaging::PhotometricDepthSolver solver(calibration, {});
+  const Press& press = ball_press();
+  const imaging::DepthResult result = solver.solve(press.image, press.reference);
+  imaging::DepthCheckLimits limits;
+  limits.gel_thickness_mm = calibration.gel_thickness_mm;
+  for (auto _ : state) {
+    auto checked = imaging::check_depth(result.height_mm, result.contact_mask, press.image, press.reference, limits);
+    benchmark::DoNotOptimize(checked.contact_share);
+  }
+}
+BENCHMARK(BM_DepthChecks)->Unit(benchmark::kMicrosecond);
 
 void BM_DstPoissonOnly(benchmark::State& state) {
   imaging::DstPoisson poisson(320, 240);

@@ -16,6 +16,7 @@
 
 #include "report_settings.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/natural_order.hpp"
 #include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
 
@@ -45,32 +46,6 @@ json read_run_summary(const fs::path& file) {
   return summary;
 }
 
-namespace {
-
-// Folder names in natural order: setting2 before setting10 (a sweep's order).
-bool natural_less(const std::string& a, const std::string& b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-      std::size_t ei = i, ej = j;
-      while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
-      while (ej < b.size() && std::isdigit(static_cast<unsigned char>(b[ej]))) ++ej;
-      std::string_view x(a.data() + i, ei - i), y(b.data() + j, ej - j);
-      while (x.size() > 1 && x.front() == '0') x.remove_prefix(1);
-      while (y.size() > 1 && y.front() == '0') y.remove_prefix(1);
-      if (x.size() != y.size()) return x.size() < y.size();
-      if (x != y) return x < y;
-      i = ei, j = ej;
-    } else {
-      if (a[i] != b[j]) return a[i] < b[j];
-      ++i, ++j;
-    }
-  }
-  return a.size() - i < b.size() - j;
-}
-
-}  // namespace
-
 std::vector<RunFolder> find_runs(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir.string() + " is not a folder (give a run's --out folder)");
@@ -81,6 +56,7 @@ std::vector<RunFolder> find_runs(const fs::path& dir) {
     std::vector<fs::path> subs;
     for (const auto& entry : fs::directory_iterator(parent))
       if (entry.is_directory() && fs::exists(entry.path() / "summary.json")) subs.push_back(entry.path() / "summary.json");
+    // setting2 before setting10: a sweep's order
     std::sort(subs.begin(), subs.end(),
               [](const fs::path& a, const fs::path& b) { return natural_less(a.string(), b.string()); });
     files.insert(files.end(), subs.begin(), subs.end());

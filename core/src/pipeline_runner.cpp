@@ -84,6 +84,9 @@ class Runner {
     for (const auto& key : options_.capture)
       if (auto it = values_.find(key); it != values_.end())
         if (std::optional<std::any> v = resolve(it->second); v && v->has_value()) result.captured[key] = std::move(*v);
+    for (const auto& [key, calls] : every_call_)
+      for (const auto& call : calls)
+        if (std::optional<std::any> v = resolve(call); v && v->has_value()) result.captured_every_call[key].push_back(std::move(*v));
     result.summary_json = make_summary(pipeline_, result, options_).dump(2) + "\n";
     if (!options_.out_dir.empty()) {
       auto files = record.outputs;
@@ -97,6 +100,7 @@ class Runner {
  private:
   // RunOptions::capture: known outputs, produced as if a stage read them.
   void want_captured_outputs() {
+    captured_ = {options_.capture.begin(), options_.capture.end()};
     for (const auto& key : options_.capture) {
       const auto dot = key.rfind('.');
       const std::string id = key.substr(0, dot), port = dot == std::string::npos ? "" : key.substr(dot + 1);
@@ -175,7 +179,15 @@ class Runner {
       return;
     }
     s.context->set_iteration(s.iteration);
-    for (auto& [port, value] : process(s, inputs)) values_[s.id + "." + port] = {std::move(value), {}, {}};
+    for (auto& [port, value] : process(s, inputs)) {
+      Value& kept = values_[s.id + "." + port] = {std::move(value), {}, {}};
+      keep_call(s.id + "." + port, kept);
+    }
+  }
+
+  // RunOptions::capture_every_call: each call's value of a captured output.
+  void keep_call(const std::string& key, const Value& value) {
+    if (options_.capture_every_call && captured_.count(key)) every_call_[key].push_back(value);
   }
 
   // One call of the process hook, on whichever thread runs it.
@@ -203,7 +215,10 @@ class Runner {
     rethrow_background_error();  // stop soon after a background call fails
     auto promise = std::make_shared<std::promise<Value::Outputs>>();
     const std::shared_future<Value::Outputs> outputs = promise->get_future().share();
-    for (const auto& out : s.ports->outputs()) values_[s.id + "." + out.name] = {{}, outputs, out.name};
+    for (const auto& out : s.ports->outputs()) {
+      const std::string key = s.id + "." + out.name;
+      keep_call(key, values_[key] = {{}, outputs, out.name});
+    }
     worker_.submit([this, &s, inputs = std::move(inputs), promise, iteration = s.iteration](std::exception_ptr earlier) {
       if (earlier) {
         promise->set_exception(earlier);
@@ -249,6 +264,8 @@ class Runner {
   ResolvedPipeline& pipeline_;
   const RunOptions& options_;
   Values values_;
+  std::set<std::string> captured_;                          // RunOptions::capture
+  std::map<std::string, std::vector<Value>> every_call_;  // RunOptions::capture_every_call
   std::map<const ResolvedLoop*, Values> previous_;
   // Last: destroyed first, so no background call outlives what it uses.
   BackgroundWorker worker_;

@@ -88,20 +88,25 @@ cv::Point map_pixel_in_picture(cv::Size size, int which, int x, int y) {
   return {kMargin + which * (size.width * block + kGap) + x * block, kMargin + kTitle + y * block};
 }
 
-cv::Mat draw_map_pair(const MapView& left, const MapView& right, const ColourScale& scale) {
-  const cv::Size size = right.values.size();  // the truth's, in a pipeline's picture
-  check(right, size, "'" + right.title + "'");
-  check(left, size, "'" + left.title + "'");
+namespace {
+
+// The maps side by side, titled, with the colour bar and the legend below;
+// `outline` names what the contact outline shows.
+cv::Mat draw_panels(const std::vector<const MapView*>& maps, const ColourScale& scale, const std::string& outline) {
+  const cv::Size size = maps.back()->values.size();
+  const int count = static_cast<int>(maps.size());
   const int block = block_of(size), w = size.width * block, h = size.height * block;
-  const int width = 2 * kMargin + 2 * w + kGap;
+  const int width = 2 * kMargin + count * w + (count - 1) * kGap;
   const int legend_top = kMargin + kTitle + h + 10;
   cv::Mat picture(legend_top + kBar + 52, width, CV_8UC3, kPaper);
 
-  for (int which = 0; which < 2; ++which) {
-    const MapView& m = which == 0 ? left : right;
+  bool outlined = false;
+  for (int which = 0; which < count; ++which) {
+    const MapView& m = *maps[static_cast<std::size_t>(which)];
     const cv::Point at = map_pixel_in_picture(size, which, 0, 0);
     put_text(picture, m.title, {at.x, kMargin + 14}, kTextColour);
     colour_map(m, scale, block).copyTo(picture(cv::Rect(at.x, at.y, w, h)));
+    outlined = outlined || !m.contact_mask.empty();
   }
 
   // The colour bar: the scale from low (left) to high (right), labelled.
@@ -115,7 +120,9 @@ cv::Mat draw_map_pair(const MapView& left, const MapView& right, const ColourSca
   const std::string low = "<= " + number(scale.low, scale.unit), high = ">= " + number(scale.high, scale.unit);
   const std::string mid = number(0.5 * (scale.low + scale.high), scale.unit);
   put_text(picture, low, {bar_x, label_y}, kTextColour);
-  put_text(picture, mid, {bar_x + (bar_w - text_width(mid)) / 2, label_y}, kTextColour);
+  const int mid_x = bar_x + (bar_w - text_width(mid)) / 2;
+  if (mid_x > bar_x + text_width(low) + 8 && mid_x + text_width(mid) + 8 < bar_x + bar_w - text_width(high))
+    put_text(picture, mid, {mid_x, label_y}, kTextColour);  // where it fits between the ends' labels
   put_text(picture, high, {bar_x + bar_w - text_width(high), label_y}, kTextColour);
 
   // The swatches: no value, contact outline.
@@ -128,8 +135,22 @@ cv::Mat draw_map_pair(const MapView& left, const MapView& right, const ColourSca
     x += 17 + text_width(text) + 16;
   };
   swatch(kNoValue, "no value");
-  if (!left.contact_mask.empty() || !right.contact_mask.empty()) swatch(kContactOutline, "true contact region (outline)");
+  if (outlined) swatch(kContactOutline, outline);
   return picture;
+}
+
+}  // namespace
+
+cv::Mat draw_map_pair(const MapView& left, const MapView& right, const ColourScale& scale) {
+  const cv::Size size = right.values.size();  // the truth's, in a pipeline's picture
+  check(right, size, "'" + right.title + "'");
+  check(left, size, "'" + left.title + "'");
+  return draw_panels({&left, &right}, scale, "true contact region (outline)");
+}
+
+cv::Mat draw_map(const MapView& map, const ColourScale& scale) {
+  check(map, map.values.size(), "'" + map.title + "'");
+  return draw_panels({&map}, scale, "contact region (outline)");
 }
 
 }  // namespace touchcloud::imaging

@@ -76,12 +76,14 @@ struct Result {
 };
 
 Result run(const std::string& file, std::uint64_t seed, const py::dict& set, const std::optional<std::string>& scene,
-           const std::optional<std::string>& out, const std::optional<std::vector<std::string>>& outputs, bool quiet) {
+           const std::optional<std::string>& out, const std::optional<std::vector<std::string>>& outputs, bool quiet,
+           bool every_iteration) {
   Pipeline pipeline = load(file, set, scene);
   RunOptions options;
   options.seed = seed;
   options.quiet = quiet;
   options.capture = outputs ? *outputs : pipeline.wired_outputs();
+  options.capture_every_call = every_iteration;
   std::optional<ScratchFolder> scratch;
   if (!out) scratch.emplace();
   options.out_dir = out ? fs::path(*out) : scratch->path();
@@ -102,13 +104,23 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
         py::arg("direction") = or_none(spec.direction, to_string(spec.direction)),
         py::arg("role") = spec.role == MetricRole::none ? py::object(py::none()) : py::object(py::str(to_string(spec.role))));
   }
-  for (const auto& [key, value] : r.captured) {
+  const auto python_form = [&](const std::string& key, const auto& convert) {
     try {
-      result.outputs[py::str(key)] = to_python(key, value);
+      result.outputs[py::str(key)] = convert();
     } catch (const py::type_error&) {
       if (outputs) throw;  // asked for by name
       result.without_python_form.push_back(key);
     }
+  };
+  if (every_iteration) {
+    for (const auto& [key, calls] : r.captured_every_call)
+      python_form(key, [&] {
+        py::list values;
+        for (const auto& value : calls) values.append(to_python(key, value));
+        return values;
+      });
+  } else {
+    for (const auto& [key, value] : r.captured) python_form(key, [&] { return to_python(key, value); });
   }
   result.summary = py::module_::import("json").attr("loads")(r.summary_json);
   // As summary.json records them, with each file's absolute path where it
@@ -152,11 +164,12 @@ void bind_run(py::module_& m) {
       .def("__repr__", [](const Result& r) { return "<touchcloud.Result: " + std::to_string(r.metrics.size()) + " metrics, " + std::to_string(r.outputs.size()) + " outputs>"; });
   m.def("run", &run, py::arg("pipeline"), py::kw_only(), py::arg("seed") = 0, py::arg("set") = py::dict(),
         py::arg("scene") = py::none(), py::arg("out") = py::none(), py::arg("outputs") = py::none(),
-        py::arg("quiet") = true,
+        py::arg("quiet") = true, py::arg("every_iteration") = false,
         "Runs a pipeline file as `touchcloud run` does. set: {'stage.param': value} overrides; scene: the scene "
         "file for every stage that takes one (as --scene); out: output folder "
         "(None: files go to a temporary folder removed afterwards); outputs: 'stage.port' names to return (None: "
-        "every output some stage reads).");
+        "every output some stage reads); every_iteration: each output as a list of its values, one per call of its "
+        "stage (every iteration of a loop), instead of the last one.");
   m.def(
       "validate",
       [](const std::string& file, const py::dict& set, const std::optional<std::string>& scene) {

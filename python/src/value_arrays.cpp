@@ -11,6 +11,8 @@
 #include "touchcloud/types/contact_state.hpp"
 #include "touchcloud/types/dense_maps.hpp"
 #include "touchcloud/types/frames.hpp"
+#include "touchcloud/types/height_map.hpp"
+#include "touchcloud/types/mono_colour_frame.hpp"
 #include "touchcloud/types/marker_set.hpp"
 #include "touchcloud/types/score.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
@@ -103,6 +105,21 @@ py::object to_python(const std::string& key, const std::any& value) {
   }
   if (const auto* v = std::any_cast<ColourStereoFramePtr>(&value))  // BGR, as OpenCV holds them
     return py::dict(py::arg("left") = image_array((*v)->left), py::arg("right") = image_array((*v)->right));
+  if (const auto* v = std::any_cast<MonoColourFramePtr>(&value)) {  // BGR, as OpenCV holds it
+    const MonoColourFrame& f = **v;
+    return py::dict(py::arg("image") = image_array(f.image), py::arg("sensor") = f.sensor,
+                    py::arg("mm_per_px") = f.mm_per_px, py::arg("timestamp_s") = f.timestamp_s,
+                    py::arg("index") = f.index);
+  }
+  if (const auto* v = std::any_cast<HeightMapPtr>(&value)) {
+    // Height in mm (float32), masks 0/255 (uint8; contact_mask None where not computed).
+    const HeightMap& h = **v;
+    return py::dict(py::arg("height_mm") = image_array(h.height_mm), py::arg("valid") = image_array(h.valid),
+                    py::arg("contact_mask") = h.contact_mask.empty() ? py::object(py::none()) : image_array(h.contact_mask),
+                    py::arg("sensor") = h.sensor, py::arg("mm_per_px") = h.mm_per_px,
+                    py::arg("gel_thickness_mm") = h.gel_thickness_mm, py::arg("timestamp_s") = h.timestamp_s,
+                    py::arg("index") = h.index);
+  }
   if (const auto* v = std::any_cast<DenseMapsPtr>(&value)) {
     // The maps a stage filled (disparity px, depth mm, masks 0/255); empty ones are None.
     const auto map = [](const cv::Mat& m) -> py::object { return m.empty() ? py::none() : image_array(m); };
@@ -150,7 +167,7 @@ py::object to_python(const std::string& key, const std::any& value) {
   if (const auto* v = std::any_cast<bool>(&value)) return py::bool_(*v);
   if (const auto* v = std::any_cast<double>(&value)) return py::float_(*v);
   throw py::type_error("output '" + key + "' has no Python form (clouds, tactile clouds, surfaces, images, stereo and colour stereo "
-                       "frames, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
+                       "frames, GelSight-type colour frames, height maps, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
 }
 
 void bind_surface(py::module_& m) {

@@ -161,3 +161,28 @@ def test_metrics_carry_their_declarations_and_artifacts_their_roles(source, tmp_
     # Without out, the files went with the scratch folder: no paths.
     scratch = touchcloud.run(str(source / "pipelines/downsample_cloud.yaml"))
     assert [(a["role"], a["path"]) for a in scratch.artifacts] == [("cloud", None)]
+
+
+def test_height_maps_and_colour_frames_are_arrays(source):
+    r = touchcloud.run(str(source / "pipelines/simulate_touch_gelsight.yaml"), outputs=["depth.height", "sim.image"])
+    height = r.outputs["depth.height"]
+    assert height["height_mm"].dtype == np.float32 and height["height_mm"].shape == (240, 320)
+    assert height["contact_mask"].dtype == np.uint8 and set(np.unique(height["contact_mask"])) <= {0, 255}
+    assert height["height_mm"].max() == pytest.approx(r.metrics["depth.max_height_mm"]["value"], abs=1e-6)
+    assert height["mm_per_px"] > 0 and height["gel_thickness_mm"] > 0 and height["sensor"]
+    frame = r.outputs["sim.image"]
+    assert frame["image"].dtype == np.uint8 and frame["image"].shape == (240, 320, 3)  # BGR
+    assert not frame["image"].flags.writeable
+
+
+def test_every_iteration_returns_each_calls_outputs(source):
+    pipeline = str(source / "pipelines/simulate_touch_gelsight.yaml")
+    r = touchcloud.run(pipeline, outputs=["sim.image", "contact.state", "depth.height"], every_iteration=True)
+    calls = r.times["stages"]["sim"]["calls"]
+    frames, states = r.outputs["sim.image"], r.outputs["contact.state"]
+    assert isinstance(frames, list) and calls > 3 and len(frames) == len(states) == calls
+    assert states[-1]["stable"] is True and states[0]["stable"] is False
+    assert not np.array_equal(frames[0]["image"], frames[-1]["image"])  # the press shows
+    assert len(r.outputs["depth.height"]) == 1  # outside the loop: one call
+    last = touchcloud.run(pipeline, outputs=["sim.image"])
+    np.testing.assert_array_equal(last.outputs["sim.image"]["image"], frames[-1]["image"])

@@ -87,6 +87,10 @@ struct RunOptions {
   // that embed the runtime (the Python module); each is produced even when
   // no stage reads it. InputError for a stage or port the pipeline lacks.
   std::vector<std::string> capture;
+  // Also every call's value of the captured outputs, in call order
+  // (RunResult::captured_every_call): each iteration of a loop, not only
+  // the last.
+  bool capture_every_call = false;
   // Where stage log lines go (see RunSettings::log_sink); empty: std::clog.
   std::function<void(const std::string& line)> log_sink;
   // Called after each iteration of a top-level loop: its id, the iterations
@@ -116,6 +120,9 @@ struct RunResult {
   // RunOptions::capture's outputs, last value each (inside a loop: of the
   // last iteration); an output the stage did not produce is absent.
   std::map<std::string, std::any> captured;
+  // With RunOptions::capture_every_call: each call's value, in call order
+  // (a call that did not produce the output adds nothing).
+  std::map<std::string, std::vector<std::any>> captured_every_call;
   std::string summary_json;  // what summary.json holds (also without out_dir)
 };
 

@@ -104,3 +104,27 @@ TEST(MapPicture, PathMustNameAPictureFormat) {
   params.assign("path", std::string("height.JPG"));
   EXPECT_TRUE(params.broken_rules().empty());
 }
+
+// Recorded images have no truth: the estimate alone on its own range, its
+// contact region outlined.
+TEST(MapPicture, AHeightMapWithoutTruthIsDrawnAlone) {
+  test::TempDir dir;
+  RunSettings settings;
+  settings.staging_dir = dir.path();
+  settings.quiet = true;
+  auto h = std::make_shared<HeightMap>();
+  const MapView e = ramp("e");
+  h->height_mm = e.values, h->valid = e.valid, h->contact_mask = e.contact_mask;
+  test::StageHarness stage("map_picture", {{"path", std::string("height.png")}}, "picture", settings);
+  stage.configure();
+  stage.process({{"height", std::any(HeightMapPtr(h))}}, {});
+  const cv::Mat written = cv::imread((dir / "height.png").string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(written.empty());
+  EXPECT_EQ(written.cols, 320 + 2 * 10);
+  EXPECT_EQ(written.at<cv::Vec3b>(imaging::map_pixel_in_picture({40, 30}, 0, 13, 2) + cv::Point(1, 1)),
+            imaging::scale_of(e, "mm").colour(e.values.at<float>(2, 13)));
+  ASSERT_EQ(stage.record().artifacts.size(), 1u);
+  const std::string caption = std::get<std::string>(stage.record().artifacts[0].attributes.at("caption"));
+  EXPECT_NE(caption.find("Height (mm) estimated, no ground truth, on a colour scale from"), std::string::npos) << caption;
+  EXPECT_NE(caption.find("(the estimate's range)"), std::string::npos) << caption;
+}

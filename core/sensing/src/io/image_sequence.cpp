@@ -3,11 +3,11 @@
 #include <fnmatch.h>
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <regex>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/natural_order.hpp"
 #include "touchcloud/path_text.hpp"
 
 namespace fs = std::filesystem;
@@ -19,28 +19,6 @@ namespace {
 constexpr std::string_view kField = "{iteration}";
 
 bool has_glob(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
-
-// Names compared with their digit runs as numbers: frame_2 < frame_10.
-bool natural_less(const std::string& a, const std::string& b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-      std::size_t ie = i, je = j;
-      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
-      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
-      std::string x = a.substr(i, ie - i), y = b.substr(j, je - j);
-      x.erase(0, std::min(x.find_first_not_of('0'), x.size()));
-      y.erase(0, std::min(y.find_first_not_of('0'), y.size()));
-      if (x.size() != y.size()) return x.size() < y.size();
-      if (x != y) return x < y;
-      i = ie, j = je;
-    } else {
-      if (a[i] != b[j]) return a[i] < b[j];
-      ++i, ++j;
-    }
-  }
-  return a.size() - i < b.size() - j;
-}
 
 std::vector<fs::path> files_in(const fs::path& folder, const std::string& path) {
   std::error_code ec;

@@ -42,8 +42,13 @@ inline const cv::Vec3b kContactOutline{255, 255, 255};
 // `scale`, with the colour bar and legend below. 8-bit BGR.
 cv::Mat draw_map_pair(const MapView& left, const MapView& right, const ColourScale& scale);
 
+// One map alone (an estimate without a truth), drawn as draw_map_pair draws
+// each of its maps, its contact mask outlined.
+cv::Mat draw_map(const MapView& map, const ColourScale& scale);
+
 // Where map pixel (x, y) of the left (0) or right (1) map lies in the
-// picture draw_map_pair makes for maps of `size`: its block's top-left corner.
+// picture draw_map_pair (or draw_map, which 0) makes for maps of `size`: its
+// block's top-left corner.
 cv::Point map_pixel_in_picture(cv::Size size, int which, int x, int y);
 
 }  // namespace touchcloud::imaging

@@ -9,9 +9,9 @@ the line just before its opening fence:
     <!-- docs-test: MODE -->
 
 A block without a language tag is an error: tag commands sh and output
-text (or the file's format: csv, json). Shell blocks (sh, bash, shell,
-console), one command a line (a trailing backslash continues it; `#` starts
-a comment):
+text (or the file's format: csv, json; console for a session with its
+output). Shell blocks (sh, bash, shell), one command a line (a trailing
+backslash continues it; `#` starts a comment):
   run (the default)  every `touchcloud` command runs and must exit 0
   validate           `touchcloud run|sweep|score|report` get --dry-run: the
                      command line and the pipeline with its overrides are
@@ -50,7 +50,7 @@ import tempfile
 import time
 from pathlib import Path
 
-SHELL_TAGS = {"sh", "bash", "shell", "console"}
+SHELL_TAGS = {"sh", "bash", "shell"}
 YAML_TAGS = {"yaml", "yml"}
 LAUNCHERS = {"mpirun", "mpiexec", "srun"}
 DRY_RUN_VERBS = {"run", "sweep", "score", "report"}

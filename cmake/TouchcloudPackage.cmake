@@ -28,4 +28,26 @@ install(FILES ${PROJECT_BINARY_DIR}/touchcloudConfig.cmake
               ${PROJECT_BINARY_DIR}/touchcloudConfigVersion.cmake
               cmake/TouchcloudPlugin.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/touchcloud)
-install(DIRECTORY pipelines sample_clouds DESTINATION ${CMAKE_INSTALL_DATADIR}/touchcloud)
+# Pipelines name their data relative to their own file (../sample_clouds,
+# ../models), and the plugin example its data from two folders down: the same
+# layout under <prefix>/share/touchcloud as in the source tree.
+install(DIRECTORY pipelines sample_clouds models examples DESTINATION ${CMAKE_INSTALL_DATADIR}/touchcloud)
+
+# The Debian package: `cpack` in the build folder writes
+# touchcloud_<version>_<arch>.deb, installed under /usr whatever the build's
+# CMAKE_INSTALL_PREFIX (the CLI finds its plugins and data relative to its
+# own files). Its library dependencies come from dpkg-shlibdeps; the -dev
+# packages that find_package(touchcloud) needs are recommended, as is
+# matplotlib for `touchcloud sweep`'s plot.
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME touchcloud)
+set(CPACK_PACKAGE_CONTACT "touchcloud maintainers" CACHE STRING "the .deb's Maintainer field")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_STRIP_FILES ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
+    "python3-matplotlib, cmake, g++, libeigen3-dev, libpcl-dev, libboost-filesystem-dev, libyaml-cpp-dev, libopencv-dev")
+include(CPack)

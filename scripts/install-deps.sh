@@ -15,7 +15,7 @@ packages=(
   libjpeg-dev zlib1g-dev
   libtorch-dev
   chromium
-  mkdocs
+  mkdocs doxygen
 )
 # The report's JavaScript comes through npm: Debian's package, unless an npm
 # is there already (NodeSource's nodejs bundles one and conflicts with it).

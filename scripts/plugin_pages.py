@@ -30,14 +30,19 @@ def cli_json(cli, *args):
     return json.loads(out.stdout)
 
 
+def uses_plugin(path, name):
+    return re.search(rf"^\s*plugin:\s*{re.escape(name)}\s*(#.*)?$", path.read_text(), re.M) is not None
+
+
 def example_for(name):
     """docs/examples/NAME.yaml, else the smallest example or shipped pipeline with a stage of the plugin."""
     own = SOURCE / "docs/examples" / f"{name}.yaml"
     if own.exists():
+        if not uses_plugin(own, name):
+            sys.exit(f"plugin_pages: {own.relative_to(SOURCE)} is {name}'s example but has no stage of {name}")
         return own
     files = sorted(SOURCE.glob("docs/examples/*.yaml")) + sorted(SOURCE.glob("pipelines/*.yaml"))
-    uses = [p for p in files
-            if re.search(rf"^\s*plugin:\s*{re.escape(name)}\s*(#.*)?$", p.read_text(), re.M)]
+    uses = [p for p in files if uses_plugin(p, name)]
     return min(uses, key=lambda p: (p.stat().st_size, p.name)) if uses else None
 
 

@@ -33,6 +33,7 @@ fs::path write_report(const fs::path& run_dir, const fs::path& out_file) {
 Action* add_report_verb(CLI::App& app) {
   struct Options {
     std::string run_dir, out;
+    bool dry_run = false;
   };
   static Options o;
   static Action action;
@@ -41,8 +42,13 @@ Action* add_report_verb(CLI::App& app) {
                 "stage times, parameters and versions");
   cmd->add_option("run_dir", o.run_dir, "a run's --out folder (summary.json), or a sweep's --out folder")->required();
   cmd->add_option("--out", o.out, "the HTML file (default: RUN_DIR/report.html)");
+  cmd->add_flag("--dry-run", o.dry_run, kDryRunHelp);
   cmd->callback([] {
     action = [] {
+      if (o.dry_run) {
+        std::cout << "report " << o.run_dir << ": command line ok, nothing written (--dry-run)\n";
+        return kExitOk;
+      }
       const fs::path file = write_report(o.run_dir, o.out);
       std::cout << "wrote " << file.string() << "\n";
       return kExitOk;

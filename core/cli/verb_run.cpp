@@ -66,6 +66,7 @@ Action* add_run_verb(CLI::App& app) {
     std::string out;
     bool quiet = false, progress = false;
     bool report = false;
+    bool dry_run = false;
   };
   static Options o;
   static Action action;
@@ -82,6 +83,7 @@ Action* add_run_verb(CLI::App& app) {
                 "show the run's progress (iterations of its loop, a training stage's epochs, rate, time left) also "
                 "when stderr is not a terminal (logs, CI)");
   cmd->add_flag("--report", o.report, "also write report.html (touchcloud report) into the output folder");
+  cmd->add_flag("--dry-run", o.dry_run, kDryRunHelp);
   cmd->callback([] {
     action = [] {
       std::vector<Override> overrides;
@@ -97,6 +99,10 @@ Action* add_run_verb(CLI::App& app) {
                             p.name().find('/') != std::string::npos))
         throw InputError("pipeline name '" + p.name() + "' cannot name a folder in out/; give --out DIR");
       options.out_dir = o.out.empty() ? std::filesystem::path("out") / p.name() : std::filesystem::path(o.out);
+      if (o.dry_run) {
+        std::cout << o.pipeline << ": ok, not run (--dry-run; it would write " << options.out_dir.string() << ")\n";
+        return kExitOk;
+      }
       options.quiet = o.quiet;
       // Past a second, the top-level loop's iterations and a long stage's
       // own count on one line (stage logs printed above it), in a terminal

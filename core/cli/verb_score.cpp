@@ -67,6 +67,7 @@ struct Options {
   int threads = 0;
   bool drop_nonfinite = false;
   bool progress = false;
+  bool dry_run = false;
   scoring::Visibility visible = scoring::Visibility::all;
 };
 
@@ -476,13 +477,20 @@ Action* add_score_verb(CLI::App& app) {
   cmd->add_option("--threads", o.threads, "threads to use (default 0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--drop-nonfinite", o.drop_nonfinite,
                 "drop points with NaN or infinite coordinates instead of refusing the file");
+  cmd->add_flag("--dry-run", o.dry_run, kDryRunHelp);
   cmd->footer(
       "Distances are in mm (as the clouds are), computed in double precision.\n"
       "Exit status: 0 every estimate was scored; 2 bad input: a usage error or an unreadable ground truth "
       "given with --gt (nothing is scored), or some estimates were unreadable, empty or had no ground truth "
       "(the others are scored and printed; each failure is reported on stderr and in its record); "
       "1 some estimates failed while scoring, for another reason.");
-  cmd->callback([] { action = [] { return run_score(o); }; });
+  cmd->callback([] {
+    action = [] {
+      if (!o.dry_run) return run_score(o);
+      std::cout << "score: command line ok, nothing scored (--dry-run)\n";
+      return kExitOk;
+    };
+  });
   return &action;
 }
 

@@ -65,6 +65,7 @@ Action* add_sweep_verb(CLI::App& app) {
     std::uint64_t seed = 0;
     bool resume = false, progress = false;
     bool report = false;
+    bool dry_run = false;
   };
   static Options o;
   static Action action;
@@ -86,6 +87,7 @@ Action* add_sweep_verb(CLI::App& app) {
                   "metric of role accuracy)");
   cmd->add_flag("--report", o.report, "also write report.html (touchcloud report of the sweep's folder) into --out");
   cmd->add_option("--time", o.time, "column plotted as time (wall_time_s or time_STAGE_s)")->capture_default_str();
+  cmd->add_flag("--dry-run", o.dry_run, kDryRunHelp);
   cmd->callback([] {
     action = [] {
       std::vector<SweepAxis> axes;
@@ -116,6 +118,11 @@ Action* add_sweep_verb(CLI::App& app) {
         }
       }
       for (auto& s : settings) s.erase(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(fixed.size()));
+      if (o.dry_run) {
+        std::cout << o.pipeline << ": ok, " << settings.size() << " settings x " << o.repeats
+                  << " repeats, not run (--dry-run)\n";
+        return kExitOk;
+      }
 
       const fs::path out = o.out;
       // The whole sweep holds its folder, as a run holds its own: a second

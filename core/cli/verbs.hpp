@@ -27,6 +27,12 @@ inline constexpr const char* kSceneHelp =
     "the scene file for every stage that takes a scene (replacing the pipeline's 'scene:' and the stages' own, "
     "except those marked own_scene: true); relative to the current directory";
 
+// Help of --dry-run, shared by run, sweep, score and report (the guide's
+// commands that need minutes are checked with it: docs.commands).
+inline constexpr const char* kDryRunHelp =
+    "check the command line (and the pipeline with its overrides, as validate does) and stop: nothing runs and "
+    "nothing is written";
+
 // Exit statuses of the CLI contract.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRunFailed = 1;

@@ -151,7 +151,6 @@ std::vector<fs::path> PluginRegistry::default_search_path() {
   // The folder beside this library: build/lib/touchcloud/plugins in the build
   // tree, <prefix>/lib/touchcloud/plugins once installed.
   add(fs::path(boost::dll::this_line_location().parent_path().string()) / TOUCHCLOUD_PLUGIN_SUBDIR);
-  add(TOUCHCLOUD_INSTALL_PLUGIN_DIR);
   if (const char* env = std::getenv("TOUCHCLOUD_PLUGIN_PATH")) {
     std::string list = env;
     std::size_t start = 0;

@@ -73,6 +73,31 @@ TEST(Cli, ValidateAcceptsAGoodPipeline) {
   EXPECT_NE(r.out.find("ok"), std::string::npos);
 }
 
+// --dry-run checks what run and sweep would run (the guide's long commands
+// are checked with it) and writes nothing; score and report check their
+// command line.
+TEST(Cli, DryRunChecksThePipelineAndItsOverridesAndWritesNothing) {
+  touchcloud::test::TempDir dir;
+  const std::string out = (dir / "out").string();
+  auto r = run_cli({"run", kDemo, "--dry-run", "--seed", "3", "--out", out, "--set", "thin.leaf_size_mm=2.5"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("not run (--dry-run"), std::string::npos) << r.out;
+  r = run_cli({"sweep", kDemo, "--dry-run", "--vary", "thin.leaf_size_mm=1,2,4", "--repeats", "3", "--out", out});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("3 settings x 3 repeats"), std::string::npos) << r.out;
+  EXPECT_EQ(run_cli({"score", "--dry-run", "--gt", "gt.ply", out}).exit_code, 0);
+  EXPECT_EQ(run_cli({"report", "--dry-run", out}).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out));
+  // What run itself would refuse is refused: an unknown key, a bad value, a bad option.
+  r = run_cli({"run", kDemo, "--dry-run", "--out", out, "--set", "thin.leaf_size=2.5"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("leaf_size"), std::string::npos) << r.err;
+  EXPECT_EQ(run_cli({"sweep", kDemo, "--dry-run", "--vary", "thin.leaf_size_mm=1,fine", "--out", out}).exit_code, 2);
+  EXPECT_EQ(run_cli({"run", kDemo, "--dry-run", "--seed", "-1"}).exit_code, 2);
+  EXPECT_EQ(run_cli({"score", "--dry-run", "--visible", "sideways", "--gt", "gt.ply", out}).exit_code, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, BadPipelinesExitTwoWithLocatedErrorsAndWriteNothing) {
   touchcloud::test::TempDir dir;
   const fs::path bad = dir / "bad.yaml";

@@ -1,7 +1,7 @@
 // Finds plugins by name on a search path and loads them with Boost.DLL.
 // Search order: the plugin folder beside the core library (the build tree or
-// the install prefix it was loaded from), the configured install prefix, then
-// each folder of TOUCHCLOUD_PLUGIN_PATH (':'-separated). First match wins.
+// the install prefix it was loaded from), then each folder of
+// TOUCHCLOUD_PLUGIN_PATH (':'-separated). First match wins.
 #pragma once
 
 #include <filesystem>

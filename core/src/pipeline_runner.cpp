@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <future>
 #include <optional>
 
@@ -54,7 +55,8 @@ class Runner {
     RunRecord& record = pipeline_.record;
     record = RunRecord{};
     want_captured_outputs();
-    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink, options_.on_stage_progress};
+    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink, options_.on_stage_progress,
+                               options_.on_metric};
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays
@@ -131,7 +133,8 @@ class Runner {
     for (auto* s : loop.stages)
       if (!s->loops.empty() && s->loops.back() == &loop)
         for (const auto& port : after_loop_outputs(*s)) values_.erase(s->id + "." + port);
-    for (std::int64_t i = 0; i < loop.max_iterations; ++i) {
+    const std::int64_t budget = this->budget(loop);
+    for (std::int64_t i = 0; i < budget; ++i) {
       if (i > 0) {
         previous.clear();
         for (auto* s : loop.stages)
@@ -144,12 +147,22 @@ class Runner {
       --loop_depth_;
       ++loop.iterations_run;
       if (loop_depth_ == 0 && options_.on_loop_iteration)
-        options_.on_loop_iteration(loop.id, loop.iterations_run, loop.max_iterations);
+        options_.on_loop_iteration(loop.id, loop.iterations_run, budget);
       if (loop.until_key) {
         const std::optional<std::any> until = resolve(values_.at(*loop.until_key));
         if (until && std::any_cast<bool>(*until)) break;
       }
+      if (loop_depth_ == 0 && options_.stop && options_.stop->load()) break;
     }
+  }
+
+  // A loop's iterations: its max_iterations, or when streaming a top-level
+  // loop's frame count (none: until it ends or is stopped).
+  std::int64_t budget(const ResolvedLoop& loop) const {
+    if (!options_.streaming) return loop.max_iterations;
+    for (const auto& n : pipeline_.nodes)
+      if (n.loop.get() == &loop) return options_.frames.value_or(std::numeric_limits<std::int64_t>::max());
+    return loop.max_iterations;
   }
 
   void run_stage(ResolvedStage& s) {
@@ -183,10 +196,12 @@ class Runner {
     std::map<std::string, std::any> resolved;
     for (const auto& [port, value] : inputs)
       if (auto v = resolve(value)) resolved[port] = std::move(*v);
-    const bool final_call = s.loops.empty() || s.iteration == s.loops.back()->max_iterations - 1;
+    const bool final_call = s.loops.empty() || s.iteration == budget(*s.loops.back()) - 1;
     StageIO io(*s.ports, std::move(resolved), s.wanted_outputs, after_loop_outputs(s), final_call);
+    const double before_s = s.timing.process_s;
     timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
     ++s.timing.calls;
+    if (options_.streaming) s.timing.call_s.push_back(s.timing.process_s - before_s);
     return std::move(io.outputs());
   }
 

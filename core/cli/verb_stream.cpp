@@ -12,7 +12,7 @@
 #include "run_printout.hpp"
 #include "seed_option.hpp"
 #include "touchcloud/interrupt_cleanup.hpp"
-#include "touchcloud/pipeline.hpp"
+#include "touchcloud/stream.hpp"
 #include "verbs.hpp"
 
 namespace touchcloud::cli {
@@ -45,17 +45,14 @@ Action* add_stream_verb(CLI::App& app) {
       for (const auto& s : o.sets) overrides.push_back(parse_override(s));
       PluginRegistry registry;
       Pipeline p = Pipeline::load(o.pipeline, overrides, registry);
-      if (!p.has_top_level_loop())
-        throw InputError(o.pipeline + ": stream runs a pipeline's top-level loop frame after frame, and this "
-                         "pipeline has none (put its source and per-frame stages in a loop with until: SOURCE.done)");
       std::atomic<bool> stop{false};
       RunOptions options;
       options.seed = o.seed;
       options.out_dir = output_folder(p, o.out);
       options.quiet = o.quiet;
-      options.streaming = true;
-      options.frames = o.frames;
-      options.stop = &stop;
+      StreamOptions stream;
+      stream.frames = o.frames;
+      stream.stop = &stop;
       ProgressLine progress(0, "frames", o.progress);
       options.log_sink = [&progress](const std::string& line) {
         progress.print_above(line.substr(0, line.size() - (!line.empty() && line.back() == '\n')));
@@ -63,16 +60,21 @@ Action* add_stream_verb(CLI::App& app) {
       options.on_loop_iteration = [&progress](const std::string&, std::int64_t done, std::int64_t) {
         progress.set(static_cast<std::size_t>(done), 0, "frames");
       };
-      options.on_metric = [&progress](const std::string&, const MetricSpec& spec, double value) {
-        if (spec.role == MetricRole::frames_dropped)
-          progress.stage(std::to_string(static_cast<long long>(value)) + " dropped");
+      // A source's frames_dropped (camera_source's), live.
+      stream.on_frame = [&progress](std::int64_t, const std::map<std::string, std::any>&, const RunRecord& record) {
+        double dropped = 0;
+        bool counted = false;
+        for (const auto& [key, series] : record.metrics)
+          if (key.size() > 15 && key.compare(key.size() - 15, 15, ".frames_dropped") == 0)
+            dropped += series.values.back(), counted = true;
+        if (counted) progress.stage(std::to_string(static_cast<long long>(dropped)) + " dropped");
       };
       // Ctrl-C ends the stream after the frame in hand; a second one ends
       // the process at once (nothing written).
       stop_on_interrupt([&stop] { stop = true; });
       RunResult r;
       try {
-        r = run_pipeline(p, options);
+        r = stream_pipeline(p, options, stream);
       } catch (...) {
         stop_on_interrupt({});
         throw;

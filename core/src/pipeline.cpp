@@ -49,12 +49,6 @@ std::vector<std::pair<std::string, MetricSpec>> Pipeline::declared_metrics() con
   return out;
 }
 
-bool Pipeline::has_top_level_loop() const {
-  for (const auto& n : impl_->nodes)
-    if (n.loop) return true;
-  return false;
-}
-
 std::vector<std::string> Pipeline::wired_outputs() const {
   std::vector<std::string> out;
   for (const auto* s : impl_->stages)

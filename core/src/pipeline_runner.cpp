@@ -14,6 +14,7 @@
 #include "pipeline_model.hpp"
 #include "run_summary.hpp"
 #include "touchcloud/file_write.hpp"
+#include "touchcloud/stream.hpp"
 
 namespace fs = std::filesystem;
 
@@ -47,7 +48,8 @@ std::optional<std::any> resolve(const Value& v) {
 
 class Runner {
  public:
-  Runner(ResolvedPipeline& p, const RunOptions& o) : pipeline_(p), options_(o) {}
+  Runner(ResolvedPipeline& p, const RunOptions& o, const StreamOptions* stream)
+      : pipeline_(p), options_(o), stream_(stream), capture_(o.capture) {}
 
   RunResult run() {
     const auto t0 = Clock::now();
@@ -55,12 +57,12 @@ class Runner {
     RunRecord& record = pipeline_.record;
     record = RunRecord{};
     want_captured_outputs();
-    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink, options_.on_stage_progress,
-                               options_.on_metric};
+    const RunSettings settings{staging.dir(), options_.quiet, options_.log_sink, options_.on_stage_progress};
     for (auto* s : pipeline_.stages) {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays
       s->iteration = -1;
+      s->call_s.clear();
     }
     for (auto* s : pipeline_.stages) {
       const auto configure = [this, s] { timed(*s, "configure", s->timing.configure_s, [&] { s->stage->configure(*s->context); }); };
@@ -83,9 +85,7 @@ class Runner {
     for (auto* l : pipeline_.loops) result.loop_iterations.emplace_back(l->id, l->iterations_run);
     result.wall_time_s = seconds_since(t0);
     result.load_time_s = pipeline_.load_time_s;
-    for (const auto& key : options_.capture)
-      if (auto it = values_.find(key); it != values_.end())
-        if (std::optional<std::any> v = resolve(it->second); v && v->has_value()) result.captured[key] = std::move(*v);
+    result.captured = captured();
     result.summary_json = make_summary(pipeline_, result, options_).dump(2) + "\n";
     if (!options_.out_dir.empty()) {
       auto files = record.outputs;
@@ -97,9 +97,24 @@ class Runner {
   }
 
  private:
-  // RunOptions::capture: known outputs, produced as if a stage read them.
+  // RunOptions::capture's outputs as they stand (waiting for background calls).
+  std::map<std::string, std::any> captured() const {
+    std::map<std::string, std::any> out;
+    for (const auto& key : capture_)
+      if (auto it = values_.find(key); it != values_.end())
+        if (std::optional<std::any> v = resolve(it->second); v && v->has_value()) out[key] = std::move(*v);
+    return out;
+  }
+
+  // RunOptions::capture (and, streaming, the outputs of capture_types):
+  // known outputs, produced as if a stage read them.
   void want_captured_outputs() {
-    for (const auto& key : options_.capture) {
+    if (stream_)
+      for (auto* s : pipeline_.stages)
+        for (const auto& out : s->ports->outputs())
+          if (std::count(stream_->capture_types.begin(), stream_->capture_types.end(), out.type))
+            capture_.push_back(s->id + "." + out.name);
+    for (const auto& key : capture_) {
       const auto dot = key.rfind('.');
       const std::string id = key.substr(0, dot), port = dot == std::string::npos ? "" : key.substr(dot + 1);
       const auto stage = std::find_if(pipeline_.stages.begin(), pipeline_.stages.end(), [&](auto* s) { return s->id == id; });
@@ -148,20 +163,21 @@ class Runner {
       ++loop.iterations_run;
       if (loop_depth_ == 0 && options_.on_loop_iteration)
         options_.on_loop_iteration(loop.id, loop.iterations_run, budget);
+      if (loop_depth_ == 0 && stream_ && stream_->on_frame) stream_->on_frame(i, captured(), pipeline_.record);
       if (loop.until_key) {
         const std::optional<std::any> until = resolve(values_.at(*loop.until_key));
         if (until && std::any_cast<bool>(*until)) break;
       }
-      if (loop_depth_ == 0 && options_.stop && options_.stop->load()) break;
+      if (loop_depth_ == 0 && stream_ && stream_->stop && stream_->stop->load()) break;
     }
   }
 
   // A loop's iterations: its max_iterations, or when streaming a top-level
   // loop's frame count (none: until it ends or is stopped).
   std::int64_t budget(const ResolvedLoop& loop) const {
-    if (!options_.streaming) return loop.max_iterations;
+    if (!stream_) return loop.max_iterations;
     for (const auto& n : pipeline_.nodes)
-      if (n.loop.get() == &loop) return options_.frames.value_or(std::numeric_limits<std::int64_t>::max());
+      if (n.loop.get() == &loop) return stream_->frames.value_or(std::numeric_limits<std::int64_t>::max());
     return loop.max_iterations;
   }
 
@@ -201,7 +217,7 @@ class Runner {
     const double before_s = s.timing.process_s;
     timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
     ++s.timing.calls;
-    if (options_.streaming) s.timing.call_s.push_back(s.timing.process_s - before_s);
+    if (stream_) s.call_s.push_back(s.timing.process_s - before_s);
     return std::move(io.outputs());
   }
 
@@ -263,16 +279,36 @@ class Runner {
 
   ResolvedPipeline& pipeline_;
   const RunOptions& options_;
+  const StreamOptions* stream_;  // null: not streaming
+  std::vector<std::string> capture_;  // RunOptions::capture and, streaming, the outputs of its capture_types
   Values values_;
   std::map<const ResolvedLoop*, Values> previous_;
   // Last: destroyed first, so no background call outlives what it uses.
   BackgroundWorker worker_;
 };
 
+// Streaming reaches the runner through run_pipeline, Pipeline's friend.
+thread_local const StreamOptions* streaming = nullptr;
+
 }  // namespace
 
 RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options) {
-  return Runner(*pipeline.impl_, options).run();
+  if (streaming) {
+    bool top_level_loop = false;
+    for (const auto& n : pipeline.impl_->nodes) top_level_loop |= n.loop != nullptr;
+    if (!top_level_loop)
+      throw InputError("stream runs a pipeline's top-level loop frame after frame, and " + pipeline.impl_->file.string() +
+                       " has none (put its source and per-frame stages in a loop with until: SOURCE.done)");
+  }
+  return Runner(*pipeline.impl_, options, streaming).run();
+}
+
+RunResult stream_pipeline(Pipeline& pipeline, const RunOptions& options, const StreamOptions& stream) {
+  streaming = &stream;
+  struct Reset {
+    ~Reset() { streaming = nullptr; }
+  } reset;
+  return run_pipeline(pipeline, options);
 }
 
 }  // namespace touchcloud

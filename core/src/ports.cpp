@@ -29,7 +29,6 @@ const char* to_string(MetricRole role) {
     case MetricRole::points_added: return "points_added";
     case MetricRole::touch_x_mm: return "touch_x_mm";
     case MetricRole::touch_y_mm: return "touch_y_mm";
-    case MetricRole::frames_dropped: return "frames_dropped";
     case MetricRole::none: break;
   }
   return "none";

@@ -55,7 +55,6 @@ void RunContext::metric(const std::string& name, double value, const std::string
     throw RunError("the stage reported final metric '" + name + "' twice; a final metric comes once a run");
   series.spec = *declared;
   series.values.push_back(value);
-  if (settings_.on_metric) settings_.on_metric(stage_id_ + "." + name, *declared, value);
 }
 
 void RunContext::artifact(ArtifactRole role, const std::string& file, std::map<std::string, ParamValue> attributes) {

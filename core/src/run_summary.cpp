@@ -68,8 +68,7 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
       if (t.id == s->id)
         stage["time_s"] = {{"check", t.check_s}, {"configure", t.configure_s}, {"process", t.process_s},
                            {"finish", t.finish_s}, {"calls", t.calls}};
-    for (const auto& t : result.timings)
-      if (t.id == s->id && !t.call_s.empty()) stage["latency_ms"] = latency_percentiles(t.call_s);
+    if (!s->call_s.empty()) stage["latency_ms"] = latency_percentiles(s->call_s);
     stages.push_back(stage);
   }
   j["stages"] = stages;

@@ -13,6 +13,7 @@
 
 #include "camera_preset.hpp"
 #include "frame_feed.hpp"
+#include "recording.hpp"
 #include "touchcloud/io/image_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/camera_image.hpp"
@@ -26,7 +27,7 @@ using camera::WhenBehind;
 using Clock = std::chrono::steady_clock;
 
 class CameraSource final : public Stage {
-  std::optional<std::string> video_, frames_, device_, preset_, reference_file_;
+  std::optional<std::string> video_, frames_, device_, preset_, reference_file_, record_;
   std::string sensor_;
   std::optional<std::array<int, 2>> size_, resize_;
   std::optional<std::array<int, 4>> crop_;
@@ -73,6 +74,9 @@ class CameraSource final : public Stage {
     p.add("realtime", realtime_, false).doc("deliver a recording's frames at the pace of their timestamps, as a camera");
     p.add("frame_timeout_s", frame_timeout_s_, 5.0).above(0).unit("s")
         .doc("longest wait for a camera to open or deliver a frame");
+    p.add("record", record_)
+        .doc("a folder to record every frame captured into (index.csv, frames/K.png; relative to the current "
+             "directory), written as frames arrive and kept whatever ends the run; frames: FOLDER/index.csv replays it");
     p.add("sensor", sensor_, std::string()).doc("the sensor's name on its frames (calibrations belong to one sensor)");
     p.rule({"video", "frames", "device"}, [this]() -> std::optional<std::string> {
       const int given = video_.has_value() + frames_.has_value() + device_.has_value();
@@ -97,8 +101,8 @@ class CameraSource final : public Stage {
     ports.output<CameraImagePtr>("reference_image", "the no-contact reference, 8-bit grey");
     ports.output<FrameStamp>("stamp", "the frame's sequence number and capture time");
     ports.output<bool>("done", "true on a recording's last frame (never for a device)");
-    ports.metric("frames_dropped", "frames", "frames lost so far: gaps in the sequence of frames processed")
-        .role(MetricRole::frames_dropped);
+    ports.metric("frames_dropped", "frames",
+                 "frames lost so far: gaps in the sequence of frames processed (touchcloud stream shows it live)");
     ports.metric("frames_captured", "frames", "frames delivered by the camera after warm-up and reference").final();
     ports.metric("frames_processed", "frames", "frames handed to the chain").final();
     for (const char* p : {"p50", "p95", "p99"})
@@ -110,6 +114,7 @@ class CameraSource final : public Stage {
   }
 
   camera::CaptureSettings settings_;
+  std::unique_ptr<camera::Recording> recording_;
   std::unique_ptr<camera::FrameFeed> feed_;
   MonoColourFramePtr reference_;
   CameraImagePtr reference_grey_;
@@ -120,13 +125,16 @@ class CameraSource final : public Stage {
   Clock::time_point first_at_;
 
   std::string source() const { return video_ ? *video_ : frames_ ? *frames_ : device_.value_or(""); }
-  bool finite() const { return camera::source_kind(source()) == SourceKind::image_files ||
-                               camera::source_kind(source()) == SourceKind::video_file; }
+  SourceKind kind() const {
+    return video_ ? SourceKind::video_file : frames_ ? SourceKind::image_files : camera::camera_kind(*device_);
+  }
+  bool finite() const { return kind() == SourceKind::image_files || kind() == SourceKind::video_file; }
   const char* source_parameter() const { return video_ ? "video" : frames_ ? "frames" : "device"; }
 
   // The preset's values where this stage's parameters are not set.
   camera::CaptureSettings capture_settings(RunContext* ctx) const {
     camera::CaptureSettings s;
+    s.kind = kind();
     s.source = source();
     s.size = size_, s.fps = fps_, s.pixel_format = pixel_format_, s.crop = crop_, s.resize = resize_;
     s.open_timeout_s = frame_timeout_s_;
@@ -159,10 +167,9 @@ class CameraSource final : public Stage {
       throw ParameterError("preset", e.what());
     }
     try {
-      if (camera::source_kind(s.source) == SourceKind::device) {
-        if (s.pixel_format && s.pixel_format->size() != 4) throw InputError("a FOURCC has four characters");
-        const std::string path = std::all_of(s.source.begin(), s.source.end(), ::isdigit) ? "/dev/video" + s.source
-                                                                                           : s.source;
+      if (s.kind == SourceKind::gstreamer) return;
+      if (s.kind == SourceKind::device) {
+        const std::string path = camera::device_path(s.source);
         if (!std::filesystem::exists(path)) throw InputError("the camera " + path + " does not exist (no such device)");
         return;
       }
@@ -172,6 +179,8 @@ class CameraSource final : public Stage {
     } catch (const InputError& e) {
       throw ParameterError(source_parameter(), e.what());
     }
+    if (record_ && std::filesystem::exists(std::filesystem::path(*record_) / "index.csv"))
+      throw ParameterError("record", "the folder " + *record_ + " already holds a recording (index.csv)");
     if (reference_file_) {
       try {
         read_image_file(*reference_file_, cv::IMREAD_COLOR);
@@ -188,8 +197,14 @@ class CameraSource final : public Stage {
                               : finite()                            ? WhenBehind::block
                                                                     : WhenBehind::drop_oldest;
     ctx.used("queue_policy", std::string(policy == WhenBehind::block ? "block" : "drop_oldest"));
+    std::function<void(const camera::Shot&)> record;
+    if (record_) {
+      recording_ = std::make_unique<camera::Recording>(*record_);
+      record = [this](const camera::Shot& shot) { recording_->add(shot); };
+      ctx.log("recording every frame into " + *record_);
+    }
     feed_ = std::make_unique<camera::FrameFeed>(std::make_unique<camera::Capture>(settings_),
-                                                static_cast<std::size_t>(queue_frames_), policy, realtime_);
+                                                static_cast<std::size_t>(queue_frames_), policy, realtime_, record);
     for (int i = 0; i < warmup_frames_; ++i) {
       std::optional<camera::Shot> shot = feed_->next(frame_timeout_s_);
       if (!shot) throw InputError(source() + " ends within its warm-up frames");
@@ -213,7 +228,7 @@ class CameraSource final : public Stage {
     frame->image = reference, frame->sensor = sensor_;
     reference_ = frame;
     reference_grey_ = grey(reference, {});
-    ctx.log(std::string("reading the ") + camera::describe(camera::source_kind(source())) + " " + source());
+    ctx.log(std::string("reading the ") + camera::describe(kind()) + " " + source());
   }
 
   static CameraImagePtr grey(const cv::Mat& bgr, const FrameStamp& stamp) {

@@ -22,8 +22,6 @@ bool all_digits(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
-std::string device_path(const std::string& source) { return all_digits(source) ? "/dev/video" + source : source; }
-
 // A recording's index.csv: a header naming `timestamp_s` and the frame's
 // file column (`file`, or a stereo dataset's `left`), paths relative to it.
 FrameFiles read_index(const fs::path& index) {
@@ -65,13 +63,11 @@ FrameFiles read_index(const fs::path& index) {
 
 }  // namespace
 
-SourceKind source_kind(const std::string& source) {
-  if (all_digits(source) || source.rfind("/dev/", 0) == 0) return SourceKind::device;
-  if (source.find(" ! ") != std::string::npos) return SourceKind::gstreamer;
-  if (source.find("{iteration}") != std::string::npos || fs::path(source).extension() == ".csv")
-    return SourceKind::image_files;
-  return SourceKind::video_file;
+SourceKind camera_kind(const std::string& camera) {
+  return camera.find(" ! ") != std::string::npos ? SourceKind::gstreamer : SourceKind::device;
 }
+
+std::string device_path(const std::string& camera) { return all_digits(camera) ? "/dev/video" + camera : camera; }
 
 const char* describe(SourceKind kind) {
   switch (kind) {
@@ -87,6 +83,8 @@ FrameFiles list_frame_files(const std::string& source) {
   if (fs::path(source).extension() == ".csv") return read_index(source);
   FrameFiles out;
   const std::size_t at = source.find("{iteration}");
+  if (at == std::string::npos)
+    throw InputError(source + " is neither a recording's index.csv nor a '{iteration}' pattern of its frame files");
   for (long k = 0;; ++k) {
     const fs::path file = source.substr(0, at) + std::to_string(k) + source.substr(at + 11);
     if (!fs::exists(file)) break;
@@ -97,7 +95,7 @@ FrameFiles list_frame_files(const std::string& source) {
   return out;
 }
 
-Capture::Capture(CaptureSettings settings) : settings_(std::move(settings)), kind_(source_kind(settings_.source)) {
+Capture::Capture(CaptureSettings settings) : settings_(std::move(settings)), kind_(settings_.kind) {
   const std::string& source = settings_.source;
   const std::vector<int> timeouts = {cv::CAP_PROP_OPEN_TIMEOUT_MSEC, static_cast<int>(settings_.open_timeout_s * 1000),
                                      cv::CAP_PROP_READ_TIMEOUT_MSEC, static_cast<int>(settings_.open_timeout_s * 1000)};

@@ -21,13 +21,15 @@ namespace touchcloud::camera {
 
 enum class SourceKind { device, video_file, gstreamer, image_files };
 
-// What the `source` text names: digits or /dev/... a device, a string with
-// " ! " a GStreamer pipeline, a '{iteration}' pattern or an index.csv image
-// files, anything else a video file.
-SourceKind source_kind(const std::string& source);
+// What a camera's name is: a GStreamer pipeline when it has " ! ", else a
+// V4L2 device (/dev/videoN, or N).
+SourceKind camera_kind(const std::string& camera);
+// "/dev/videoN" for N, else `camera` itself.
+std::string device_path(const std::string& camera);
 const char* describe(SourceKind kind);
 
 struct CaptureSettings {
+  SourceKind kind = SourceKind::video_file;
   std::string source;
   std::optional<std::array<int, 2>> size;  // width, height the camera delivers (requested of a device)
   std::optional<double> fps;               // requested of a device; image files without index.csv: their rate

@@ -7,8 +7,12 @@
 namespace touchcloud::camera {
 
 FrameFeed::FrameFeed(std::unique_ptr<Capture> capture, std::size_t queue_frames, WhenBehind when_behind,
-                     bool realtime)
-    : capture_(std::move(capture)), capacity_(queue_frames), when_behind_(when_behind), realtime_(realtime) {
+                     bool realtime, std::function<void(const Shot&)> on_capture)
+    : capture_(std::move(capture)),
+      capacity_(queue_frames),
+      when_behind_(when_behind),
+      realtime_(realtime),
+      on_capture_(std::move(on_capture)) {
   thread_ = std::thread([this] { capture_loop(); });
 }
 
@@ -26,8 +30,14 @@ void FrameFeed::capture_loop() {
   try {
     for (;;) {
       std::optional<Shot> shot = capture_->next();
-      if (shot && realtime_)  // a recording delivered at the pace it was recorded
-        std::this_thread::sleep_until(start + std::chrono::duration<double>(shot->stamp.timestamp_s));
+      if (shot && realtime_) {  // a recording delivered at the pace it was recorded
+        const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                     std::chrono::duration<double>(shot->stamp.timestamp_s));
+        std::unique_lock lock(mutex_);
+        if (changed_.wait_until(lock, due, [&] { return stopping_; })) return;
+        shot->captured_at = std::chrono::steady_clock::now();  // when a camera would have delivered it
+      }
+      if (shot && on_capture_) on_capture_(*shot);
       std::unique_lock lock(mutex_);
       if (stopping_) return;
       if (!shot) break;

@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <deque>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -19,7 +20,10 @@ enum class WhenBehind { block, drop_oldest };
 
 class FrameFeed {
  public:
-  FrameFeed(std::unique_ptr<Capture> capture, std::size_t queue_frames, WhenBehind when_behind, bool realtime);
+  // `on_capture` (may be empty) sees every frame captured, on the capture
+  // thread, before it is queued (a recording keeps what processing drops).
+  FrameFeed(std::unique_ptr<Capture> capture, std::size_t queue_frames, WhenBehind when_behind, bool realtime,
+            std::function<void(const Shot&)> on_capture = {});
   ~FrameFeed();  // stops the capture thread
   FrameFeed(const FrameFeed&) = delete;
   FrameFeed& operator=(const FrameFeed&) = delete;
@@ -42,6 +46,7 @@ class FrameFeed {
   const std::size_t capacity_;
   const WhenBehind when_behind_;
   const bool realtime_;
+  const std::function<void(const Shot&)> on_capture_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Shot> queue_;

@@ -10,8 +10,11 @@
 #include "touchcloud/types/colour_stereo_frame.hpp"
 #include "touchcloud/types/contact_state.hpp"
 #include "touchcloud/types/dense_maps.hpp"
+#include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/frames.hpp"
+#include "touchcloud/types/height_map.hpp"
 #include "touchcloud/types/marker_set.hpp"
+#include "touchcloud/types/mono_colour_frame.hpp"
 #include "touchcloud/types/score.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 #include "touchcloud/types/surface_model.hpp"
@@ -95,6 +98,16 @@ py::object to_python(const std::string& key, const std::any& value) {
   }
   if (const auto* v = std::any_cast<SurfaceModelPtr>(&value)) return py::cast(Surface(*v));
   if (const auto* v = std::any_cast<CameraImagePtr>(&value)) return image_array((*v)->image);
+  if (const auto* v = std::any_cast<MonoColourFramePtr>(&value)) return image_array((*v)->image);  // BGR
+  if (const auto* v = std::any_cast<FrameStamp>(&value))
+    return py::dict(py::arg("sequence") = v->sequence, py::arg("timestamp_s") = v->timestamp_s);
+  if (const auto* v = std::any_cast<HeightMapPtr>(&value)) {
+    const auto map = [](const cv::Mat& m) -> py::object { return m.empty() ? py::none() : image_array(m); };
+    const HeightMap& h = **v;
+    return py::dict(py::arg("height_mm") = map(h.height_mm), py::arg("valid") = map(h.valid),
+                    py::arg("contact_mask") = map(h.contact_mask), py::arg("mm_per_px") = h.mm_per_px,
+                    py::arg("timestamp_s") = h.timestamp_s);
+  }
   if (const auto* v = std::any_cast<StereoFramePtr>(&value)) {
     py::dict d;
     d["left"] = image_array((*v)->left);
@@ -149,8 +162,8 @@ py::object to_python(const std::string& key, const std::any& value) {
   }
   if (const auto* v = std::any_cast<bool>(&value)) return py::bool_(*v);
   if (const auto* v = std::any_cast<double>(&value)) return py::float_(*v);
-  throw py::type_error("output '" + key + "' has no Python form (clouds, tactile clouds, surfaces, images, stereo and colour stereo "
-                       "frames, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
+  throw py::type_error("output '" + key + "' has no Python form (clouds, tactile clouds, surfaces, images, colour "
+                       "frames, frame stamps, height maps, stereo and colour stereo frames, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
 }
 
 void bind_surface(py::module_& m) {

@@ -19,13 +19,11 @@
 #pragma once
 
 #include <any>
-#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,8 +72,6 @@ class Pipeline {
   // Every metric its stages declare ("stage.metric" and the declaration), in
   // the stages' order: what a consumer may expect a run to report.
   std::vector<std::pair<std::string, MetricSpec>> declared_metrics() const;
-  // Whether a loop sits at the top level (what `stream` drives).
-  bool has_top_level_loop() const;
 
  private:
   friend RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options);
@@ -100,15 +96,6 @@ struct RunOptions {
   // training stage's epochs); called from the stage's thread.
   std::function<void(const std::string& stage, std::int64_t done, std::int64_t total, const std::string& unit)>
       on_stage_progress;
-  // Every metric as a stage reports it (see RunSettings::on_metric).
-  std::function<void(const std::string& key, const MetricSpec& spec, double value)> on_metric;
-  // Streaming (touchcloud stream): each top-level loop runs, whatever its
-  // max_iterations, until its `until`, `stop` turning true (checked after
-  // each iteration) or `frames` iterations; each stage's process time is
-  // kept per call, for its latency percentiles in summary.json.
-  bool streaming = false;
-  std::optional<std::int64_t> frames;
-  const std::atomic<bool>* stop = nullptr;
 };
 
 struct StageTiming {
@@ -116,7 +103,6 @@ struct StageTiming {
   double check_s = 0;  // at load, before the run (not in the run's wall time)
   double configure_s = 0, process_s = 0, finish_s = 0;
   std::size_t calls = 0;
-  std::vector<double> call_s;  // each process call's time, when streaming
 };
 
 struct RunResult {

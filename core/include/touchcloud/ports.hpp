@@ -44,7 +44,6 @@ enum class MetricRole {
   points_added,  // per touch: points the touch added to the reconstruction
   touch_x_mm,    // per touch: where the touch was aimed, base frame
   touch_y_mm,
-  frames_dropped,  // per frame: frames a camera source has lost so far (the last value: all of them)
 };
 
 struct MetricSpec {

@@ -56,9 +56,6 @@ struct RunSettings {
   // called from the stage's thread); empty: nowhere.
   std::function<void(const std::string& stage, std::int64_t done, std::int64_t total, const std::string& unit)>
       on_progress;
-  // Every metric as a stage reports it ("stage.metric"), from the stage's
-  // thread: what a live display shows (a camera's dropped frames).
-  std::function<void(const std::string& key, const MetricSpec& spec, double value)> on_metric;
 };
 
 // The hooks of a stage (touchcloud/stage.hpp), as RunContext knows them.

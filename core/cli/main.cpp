@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<Action*> actions = {
       add_run_verb(app),
+      add_stream_verb(app),
       add_validate_verb(app),
       add_plugins_verb(app),
       add_score_verb(app),

@@ -26,13 +26,14 @@ constexpr std::chrono::milliseconds kTerminalPeriod{250}, kLogPeriod{5000};
 
 std::string progress_text(std::size_t done, std::size_t total, double elapsed_s, const std::string& noun,
                           std::size_t done_at_start) {
-  std::string text = std::to_string(done) + "/" + std::to_string(total) + " " + noun;
+  // A total of 0: none known (a camera's frames).
+  std::string text = std::to_string(done) + (total > 0 ? "/" + std::to_string(total) : std::string()) + " " + noun;
   if (done <= done_at_start || !(elapsed_s > 0)) return text;
   const double rate = static_cast<double>(done - done_at_start) / elapsed_s;
   char buf[64];
   std::snprintf(buf, sizeof buf, ", %.3g %s/s", rate, noun.c_str());
   text += buf;
-  if (done < total) text += ", about " + duration_text(static_cast<double>(total - done) / rate) + " left";
+  if (total > 0 && done < total) text += ", about " + duration_text(static_cast<double>(total - done) / rate) + " left";
   return text;
 }
 

@@ -7,6 +7,7 @@
 #include "progress_line.hpp"
 #include "touchcloud/pipeline.hpp"
 #include "report.hpp"
+#include "run_printout.hpp"
 #include "seed_option.hpp"
 #include "verbs.hpp"
 
@@ -93,12 +94,7 @@ Action* add_run_verb(CLI::App& app) {
       Pipeline p = Pipeline::load(o.pipeline, overrides, registry);
       RunOptions options;
       options.seed = o.seed;
-      // The pipeline's name is an identifier (the parser checks it), and a
-      // name taken from the file is one component: the default stays in out/.
-      if (o.out.empty() && (p.name().empty() || p.name() == "." || p.name() == ".." ||
-                            p.name().find('/') != std::string::npos))
-        throw InputError("pipeline name '" + p.name() + "' cannot name a folder in out/; give --out DIR");
-      options.out_dir = o.out.empty() ? std::filesystem::path("out") / p.name() : std::filesystem::path(o.out);
+      options.out_dir = output_folder(p, o.out);
       if (o.dry_run) {
         std::cout << o.pipeline << ": ok, not run (--dry-run; it would write " << options.out_dir.string() << ")\n";
         return kExitOk;
@@ -125,16 +121,7 @@ Action* add_run_verb(CLI::App& app) {
       std::cout << "pipeline '" << p.name() << "' ran in " << std::fixed << std::setprecision(3) << r.wall_time_s
                 << " s (seed " << o.seed << "), after " << r.load_time_s
                 << " s loading plugins and checking stages\n";
-      std::size_t width = 36;
-      for (const auto& [name, series] : r.record.metrics) width = std::max(width, name.size() + 1);
-      for (const auto& [name, series] : r.record.metrics)
-        std::cout << "  " << std::left << std::setw(static_cast<int>(width)) << name << std::defaultfloat
-                  << std::setprecision(6)
-                  << series.values.back() << (series.spec.unit.empty() ? "" : " " + series.spec.unit) << "\n";
-      std::cout << "wrote " << r.record.outputs.size() + 1 << " files to " << options.out_dir.string()
-                << " (summary.json";
-      for (const auto& f : r.record.outputs) std::cout << ", " << f;
-      std::cout << ")\n";
+      print_metrics_and_files(r, options.out_dir);
       if (o.report) std::cout << "wrote " << write_report(options.out_dir).string() << "\n";
       if (const std::string line = headline(r.record); !line.empty()) std::cout << line << "\n";
       return kExitOk;

@@ -11,6 +11,7 @@ namespace touchcloud::cli {
 using Action = std::function<int()>;  // returns the exit status
 
 Action* add_run_verb(CLI::App& app);
+Action* add_stream_verb(CLI::App& app);
 Action* add_validate_verb(CLI::App& app);
 Action* add_plugins_verb(CLI::App& app);
 Action* add_score_verb(CLI::App& app);

@@ -28,6 +28,10 @@ std::string& message() {
   static std::string m;
   return m;
 }
+std::function<void()>& stop_handler() {
+  static std::function<void()> f;
+  return f;
+}
 
 sigset_t handled_signals() {
   sigset_t set;
@@ -38,7 +42,16 @@ sigset_t handled_signals() {
 
 [[noreturn]] void wait_for_signal(sigset_t set) {
   int signal_number = 0;
-  while (sigwait(&set, &signal_number) != 0) {
+  for (;;) {
+    while (sigwait(&set, &signal_number) != 0) {
+    }
+    std::function<void()> stop;
+    {
+      std::lock_guard<std::mutex> lock(folders_mutex());
+      stop.swap(stop_handler());
+    }
+    if (!stop) break;
+    stop();
   }
   {
     std::lock_guard<std::mutex> lock(folders_mutex());
@@ -75,6 +88,11 @@ void clean_up_on_interrupt() {
 void say_on_interrupt(std::string text) {
   std::lock_guard<std::mutex> lock(folders_mutex());
   message() = std::move(text);
+}
+
+void stop_on_interrupt(std::function<void()> stop) {
+  std::lock_guard<std::mutex> lock(folders_mutex());
+  stop_handler() = std::move(stop);
 }
 
 namespace interrupt {

@@ -105,6 +105,7 @@ struct ResolvedStage {
   bool background = false;
   int iteration = -1;  // of the innermost enclosing loop, as the runner reaches it
   StageTiming timing;  // check_s from the load; the rest from the last run
+  std::vector<double> call_s;  // each process call's time in the last run, when it streamed
   std::vector<const ResolvedLoop*> loops;  // enclosing loops, outermost first
 };
 

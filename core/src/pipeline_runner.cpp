@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <future>
 #include <optional>
 
@@ -13,6 +14,7 @@
 #include "pipeline_model.hpp"
 #include "run_summary.hpp"
 #include "touchcloud/file_write.hpp"
+#include "touchcloud/stream.hpp"
 
 namespace fs = std::filesystem;
 
@@ -46,7 +48,8 @@ std::optional<std::any> resolve(const Value& v) {
 
 class Runner {
  public:
-  Runner(ResolvedPipeline& p, const RunOptions& o) : pipeline_(p), options_(o) {}
+  Runner(ResolvedPipeline& p, const RunOptions& o, const StreamOptions* stream)
+      : pipeline_(p), options_(o), stream_(stream), capture_(o.capture) {}
 
   RunResult run() {
     const auto t0 = Clock::now();
@@ -59,6 +62,7 @@ class Runner {
       s->context = std::make_unique<RunContext>(s->id, options_.seed, record, settings);
       s->timing = {s->id, s->plugin->name(), s->timing.check_s};  // the load's check time stays
       s->iteration = -1;
+      s->call_s.clear();
     }
     for (auto* s : pipeline_.stages) {
       const auto configure = [this, s] { timed(*s, "configure", s->timing.configure_s, [&] { s->stage->configure(*s->context); }); };
@@ -81,9 +85,7 @@ class Runner {
     for (auto* l : pipeline_.loops) result.loop_iterations.emplace_back(l->id, l->iterations_run);
     result.wall_time_s = seconds_since(t0);
     result.load_time_s = pipeline_.load_time_s;
-    for (const auto& key : options_.capture)
-      if (auto it = values_.find(key); it != values_.end())
-        if (std::optional<std::any> v = resolve(it->second); v && v->has_value()) result.captured[key] = std::move(*v);
+    result.captured = captured();
     for (const auto& [key, calls] : every_call_)
       for (const auto& call : calls)
         if (std::optional<std::any> v = resolve(call); v && v->has_value()) result.captured_every_call[key].push_back(std::move(*v));
@@ -98,10 +100,25 @@ class Runner {
   }
 
  private:
-  // RunOptions::capture: known outputs, produced as if a stage read them.
+  // RunOptions::capture's outputs as they stand (waiting for background calls).
+  std::map<std::string, std::any> captured() const {
+    std::map<std::string, std::any> out;
+    for (const auto& key : capture_)
+      if (auto it = values_.find(key); it != values_.end())
+        if (std::optional<std::any> v = resolve(it->second); v && v->has_value()) out[key] = std::move(*v);
+    return out;
+  }
+
+  // RunOptions::capture (and, streaming, the outputs of capture_types):
+  // known outputs, produced as if a stage read them.
   void want_captured_outputs() {
+    if (stream_)
+      for (auto* s : pipeline_.stages)
+        for (const auto& out : s->ports->outputs())
+          if (std::count(stream_->capture_types.begin(), stream_->capture_types.end(), out.type))
+            capture_.push_back(s->id + "." + out.name);
     captured_ = {options_.capture.begin(), options_.capture.end()};
-    for (const auto& key : options_.capture) {
+    for (const auto& key : capture_) {
       const auto dot = key.rfind('.');
       const std::string id = key.substr(0, dot), port = dot == std::string::npos ? "" : key.substr(dot + 1);
       const auto stage = std::find_if(pipeline_.stages.begin(), pipeline_.stages.end(), [&](auto* s) { return s->id == id; });
@@ -135,7 +152,8 @@ class Runner {
     for (auto* s : loop.stages)
       if (!s->loops.empty() && s->loops.back() == &loop)
         for (const auto& port : after_loop_outputs(*s)) values_.erase(s->id + "." + port);
-    for (std::int64_t i = 0; i < loop.max_iterations; ++i) {
+    const std::int64_t budget = this->budget(loop);
+    for (std::int64_t i = 0; i < budget; ++i) {
       if (i > 0) {
         previous.clear();
         for (auto* s : loop.stages)
@@ -148,12 +166,23 @@ class Runner {
       --loop_depth_;
       ++loop.iterations_run;
       if (loop_depth_ == 0 && options_.on_loop_iteration)
-        options_.on_loop_iteration(loop.id, loop.iterations_run, loop.max_iterations);
+        options_.on_loop_iteration(loop.id, loop.iterations_run, budget);
+      if (loop_depth_ == 0 && stream_ && stream_->on_frame) stream_->on_frame(i, captured(), pipeline_.record);
       if (loop.until_key) {
         const std::optional<std::any> until = resolve(values_.at(*loop.until_key));
         if (until && std::any_cast<bool>(*until)) break;
       }
+      if (loop_depth_ == 0 && stream_ && stream_->stop && stream_->stop->load()) break;
     }
+  }
+
+  // A loop's iterations: its max_iterations, or when streaming a top-level
+  // loop's frame count (none: until it ends or is stopped).
+  std::int64_t budget(const ResolvedLoop& loop) const {
+    if (!stream_) return loop.max_iterations;
+    for (const auto& n : pipeline_.nodes)
+      if (n.loop.get() == &loop) return stream_->frames.value_or(std::numeric_limits<std::int64_t>::max());
+    return loop.max_iterations;
   }
 
   void run_stage(ResolvedStage& s) {
@@ -195,10 +224,12 @@ class Runner {
     std::map<std::string, std::any> resolved;
     for (const auto& [port, value] : inputs)
       if (auto v = resolve(value)) resolved[port] = std::move(*v);
-    const bool final_call = s.loops.empty() || s.iteration == s.loops.back()->max_iterations - 1;
+    const bool final_call = s.loops.empty() || s.iteration == budget(*s.loops.back()) - 1;
     StageIO io(*s.ports, std::move(resolved), s.wanted_outputs, after_loop_outputs(s), final_call);
+    const double before_s = s.timing.process_s;
     timed(s, "process", s.timing.process_s, [&] { s.stage->process(io, *s.context); });
     ++s.timing.calls;
+    if (stream_) s.call_s.push_back(s.timing.process_s - before_s);
     return std::move(io.outputs());
   }
 
@@ -263,6 +294,8 @@ class Runner {
 
   ResolvedPipeline& pipeline_;
   const RunOptions& options_;
+  const StreamOptions* stream_;  // null: not streaming
+  std::vector<std::string> capture_;  // RunOptions::capture and, streaming, the outputs of its capture_types
   Values values_;
   std::set<std::string> captured_;                          // RunOptions::capture
   std::map<std::string, std::vector<Value>> every_call_;  // RunOptions::capture_every_call
@@ -271,10 +304,28 @@ class Runner {
   BackgroundWorker worker_;
 };
 
+// Streaming reaches the runner through run_pipeline, Pipeline's friend.
+thread_local const StreamOptions* streaming = nullptr;
+
 }  // namespace
 
 RunResult run_pipeline(Pipeline& pipeline, const RunOptions& options) {
-  return Runner(*pipeline.impl_, options).run();
+  if (streaming) {
+    bool top_level_loop = false;
+    for (const auto& n : pipeline.impl_->nodes) top_level_loop |= n.loop != nullptr;
+    if (!top_level_loop)
+      throw InputError("stream runs a pipeline's top-level loop frame after frame, and " + pipeline.impl_->file.string() +
+                       " has none (put its source and per-frame stages in a loop with until: SOURCE.done)");
+  }
+  return Runner(*pipeline.impl_, options, streaming).run();
+}
+
+RunResult stream_pipeline(Pipeline& pipeline, const RunOptions& options, const StreamOptions& stream) {
+  streaming = &stream;
+  struct Reset {
+    ~Reset() { streaming = nullptr; }
+  } reset;
+  return run_pipeline(pipeline, options);
 }
 
 }  // namespace touchcloud

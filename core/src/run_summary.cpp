@@ -1,5 +1,8 @@
 #include "run_summary.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "touchcloud/library_versions.hpp"
 
 namespace touchcloud {
@@ -7,6 +10,15 @@ namespace touchcloud {
 namespace {
 nlohmann::json to_json(const ParamValue& v) {
   return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
+}
+
+// p50, p95 and p99 of a stage's calls (nearest rank: times that were measured), ms.
+nlohmann::json latency_percentiles(std::vector<double> call_s) {
+  std::sort(call_s.begin(), call_s.end());
+  nlohmann::json j = nlohmann::json::object();
+  for (auto [name, q] : {std::pair{"p50", 0.50}, {"p95", 0.95}, {"p99", 0.99}})
+    j[name] = 1000.0 * call_s[static_cast<std::size_t>(std::ceil(q * static_cast<double>(call_s.size()))) - 1];
+  return j;
 }
 }  // namespace
 
@@ -57,6 +69,7 @@ nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& r
       if (t.id == s->id)
         stage["time_s"] = {{"check", t.check_s}, {"configure", t.configure_s}, {"process", t.process_s},
                            {"finish", t.finish_s}, {"calls", t.calls}};
+    if (!s->call_s.empty()) stage["latency_ms"] = latency_percentiles(s->call_s);
     stages.push_back(stage);
   }
   j["stages"] = stages;

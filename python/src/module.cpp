@@ -64,5 +64,6 @@ PYBIND11_MODULE(touchcloud, m) {
   });
   bind_surface(m);
   bind_run(m);
+  bind_stream(m);
   bind_score(m);
 }

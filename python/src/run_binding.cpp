@@ -39,15 +39,6 @@ std::vector<Override> overrides_of(const py::dict& set) {
   return out;
 }
 
-Pipeline load(const std::string& file, const py::dict& set, const std::optional<std::string>& scene) {
-  auto overrides = overrides_of(set);
-  if (scene) overrides.push_back({kPipelineSceneKey, *scene, "scene="});
-  try {
-    return Pipeline::load(file, overrides, registry());
-  } catch (const InputError& e) {
-    throw PipelineLoadError(e);
-  }
-}
 
 // A folder that a run without `out` writes into and that goes with it.
 class ScratchFolder {
@@ -67,18 +58,10 @@ class ScratchFolder {
   fs::path path_;
 };
 
-struct Result {
-  py::dict metrics, outputs, times;
-  py::list artifacts;
-  std::vector<std::string> without_python_form;  // wired outputs left out of `outputs` (a plugin's own types)
-  py::object summary;
-  std::string out;  // the output folder, "" when the run wrote to a scratch folder
-};
-
 Result run(const std::string& file, std::uint64_t seed, const py::dict& set, const std::optional<std::string>& scene,
            const std::optional<std::string>& out, const std::optional<std::vector<std::string>>& outputs, bool quiet,
            bool every_iteration) {
-  Pipeline pipeline = load(file, set, scene);
+  Pipeline pipeline = load_pipeline(file, set, scene);
   RunOptions options;
   options.seed = seed;
   options.quiet = quiet;
@@ -92,6 +75,24 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
     py::gil_scoped_release unlocked;  // other Python threads run meanwhile
     r = run_pipeline(pipeline, options);
   }
+  return make_result(r, outputs.has_value(), out, every_iteration);
+}
+
+py::object json_value(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+}  // namespace
+
+Pipeline load_pipeline(const std::string& file, const py::dict& set, const std::optional<std::string>& scene) {
+  auto overrides = overrides_of(set);
+  if (scene) overrides.push_back({kPipelineSceneKey, *scene, "scene="});
+  try {
+    return Pipeline::load(file, overrides, registry());
+  } catch (const InputError& e) {
+    throw PipelineLoadError(e);
+  }
+}
+
+Result make_result(const RunResult& r, bool outputs_asked, const std::optional<std::string>& out, bool every_iteration) {
   Result result;
   const auto or_none = [](MetricDirection d, const char* text) -> py::object {
     return d == MetricDirection::none ? py::object(py::none()) : py::object(py::str(text));
@@ -108,7 +109,7 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
     try {
       result.outputs[py::str(key)] = convert();
     } catch (const py::type_error&) {
-      if (outputs) throw;  // asked for by name
+      if (outputs_asked) throw;  // asked for by name
       result.without_python_form.push_back(key);
     }
   };
@@ -143,10 +144,6 @@ Result run(const std::string& file, std::uint64_t seed, const py::dict& set, con
   return result;
 }
 
-py::object json_value(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
-
-}  // namespace
-
 void bind_run(py::module_& m) {
   py::class_<Result>(m, "Result", "What a run gives back")
       .def_readonly("metrics", &Result::metrics,
@@ -173,7 +170,7 @@ void bind_run(py::module_& m) {
   m.def(
       "validate",
       [](const std::string& file, const py::dict& set, const std::optional<std::string>& scene) {
-        load(file, set, scene);
+        load_pipeline(file, set, scene);
       },
       py::arg("pipeline"), py::kw_only(), py::arg("set") = py::dict(), py::arg("scene") = py::none(),
       "Loads and checks a pipeline as `touchcloud validate` does; raises PipelineError with every problem found.");

@@ -10,10 +10,11 @@
 #include "touchcloud/types/colour_stereo_frame.hpp"
 #include "touchcloud/types/contact_state.hpp"
 #include "touchcloud/types/dense_maps.hpp"
+#include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/frames.hpp"
 #include "touchcloud/types/height_map.hpp"
-#include "touchcloud/types/mono_colour_frame.hpp"
 #include "touchcloud/types/marker_set.hpp"
+#include "touchcloud/types/mono_colour_frame.hpp"
 #include "touchcloud/types/score.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
 #include "touchcloud/types/surface_model.hpp"
@@ -97,6 +98,8 @@ py::object to_python(const std::string& key, const std::any& value) {
   }
   if (const auto* v = std::any_cast<SurfaceModelPtr>(&value)) return py::cast(Surface(*v));
   if (const auto* v = std::any_cast<CameraImagePtr>(&value)) return image_array((*v)->image);
+  if (const auto* v = std::any_cast<FrameStamp>(&value))
+    return py::dict(py::arg("sequence") = v->sequence, py::arg("timestamp_s") = v->timestamp_s);
   if (const auto* v = std::any_cast<StereoFramePtr>(&value)) {
     py::dict d;
     d["left"] = image_array((*v)->left);
@@ -167,7 +170,7 @@ py::object to_python(const std::string& key, const std::any& value) {
   if (const auto* v = std::any_cast<bool>(&value)) return py::bool_(*v);
   if (const auto* v = std::any_cast<double>(&value)) return py::float_(*v);
   throw py::type_error("output '" + key + "' has no Python form (clouds, tactile clouds, surfaces, images, stereo and colour stereo "
-                       "frames, GelSight-type colour frames, height maps, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
+                       "frames, GelSight-type colour frames, frame stamps, height maps, dense maps, marker sets, scores, poses, contact states, touch targets, numbers and flags have one)");
 }
 
 void bind_surface(py::module_& m) {

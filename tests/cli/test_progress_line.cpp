@@ -28,6 +28,8 @@ TEST(ProgressLine, SaysDoneTotalRateAndTimeLeft) {
   // A count that began part way (a resumed training run): the rate is of what was done since.
   EXPECT_EQ(progress_text(7, 10, 4.0, "epochs", 5), "7/10 epochs, 0.5 epochs/s, about 6 s left");
   EXPECT_EQ(progress_text(5, 10, 4.0, "epochs", 5), "5/10 epochs");
+  // No total known (a camera's frames): the count and rate, no time left.
+  EXPECT_EQ(progress_text(120, 0, 2.0, "frames"), "120 frames, 60 frames/s");
 }
 
 // A long stage's count follows the loop's, with its own rate; a new

@@ -5,6 +5,7 @@
 // the runs in progress and ends the process with the same signal.
 #pragma once
 
+#include <functional>
 #include <string>
 
 namespace touchcloud {
@@ -15,5 +16,10 @@ void clean_up_on_interrupt();
 // none): what the interrupted work leaves behind and how to go on. A batch
 // keeps it current as its runs progress.
 void say_on_interrupt(std::string message);
+
+// While set, the first such signal calls `stop` instead (a stream then ends
+// as a recording's end would end it, writing what it has); a second one
+// ends the process as above. Empty: no longer.
+void stop_on_interrupt(std::function<void()> stop);
 
 }  // namespace touchcloud

@@ -1,0 +1,54 @@
+#include "camera_preset.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::camera {
+
+namespace {
+
+template <std::size_t N>
+std::array<int, N> whole_numbers(const YAML::Node& node, const std::string& where) {
+  if (!node.IsSequence() || node.size() != N)
+    throw InputError(where + ": " + std::to_string(N) + " whole numbers expected");
+  std::array<int, N> out{};
+  for (std::size_t i = 0; i < N; ++i) {
+    out[i] = node[i].as<int>();
+    if (out[i] < 0 || (i + 2 >= N && out[i] == 0)) throw InputError(where + ": sizes must be positive");
+  }
+  return out;
+}
+
+}  // namespace
+
+CameraPreset read_camera_preset(const std::filesystem::path& file) {
+  CameraPreset preset;
+  const std::string name = file.string();
+  try {
+    const YAML::Node root = YAML::LoadFile(name);
+    const YAML::Node camera = root["camera"];
+    if (!camera || !camera.IsMap()) throw InputError(name + " has no 'camera:' section");
+    for (const auto& entry : camera) {
+      const std::string key = entry.first.as<std::string>();
+      const std::string where = name + ":" + std::to_string(entry.second.Mark().line + 1) + ": camera." + key;
+      if (key == "size") preset.size = whole_numbers<2>(entry.second, where);
+      else if (key == "resize") preset.resize = whole_numbers<2>(entry.second, where);
+      else if (key == "crop") preset.crop = whole_numbers<4>(entry.second, where);
+      else if (key == "fps") {
+        preset.fps = entry.second.as<double>();
+        if (!(*preset.fps > 0)) throw InputError(where + ": frames per second must be positive");
+      } else if (key == "pixel_format") {
+        preset.pixel_format = entry.second.as<std::string>();
+        if (preset.pixel_format->size() != 4) throw InputError(where + ": a FOURCC has four characters");
+      } else {
+        throw InputError(where + ": unknown key (size, fps, pixel_format, crop, resize)");
+      }
+    }
+  } catch (const YAML::Exception& e) {
+    throw InputError(name + " cannot be read: " + e.what());
+  }
+  return preset;
+}
+
+}  // namespace touchcloud::camera

@@ -1,0 +1,106 @@
+#include "frame_feed.hpp"
+
+#include <chrono>
+
+#include "touchcloud/error.hpp"
+
+namespace touchcloud::camera {
+
+FrameFeed::FrameFeed(std::unique_ptr<Capture> capture, std::size_t queue_frames, WhenBehind when_behind,
+                     bool realtime, std::function<void(const Shot&)> on_capture)
+    : capture_(std::move(capture)),
+      capacity_(queue_frames),
+      when_behind_(when_behind),
+      realtime_(realtime),
+      on_capture_(std::move(on_capture)) {
+  thread_ = std::thread([this] { capture_loop(); });
+}
+
+FrameFeed::~FrameFeed() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void FrameFeed::capture_loop() {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    for (;;) {
+      std::optional<Shot> shot = capture_->next();
+      if (shot && realtime_) {  // a recording delivered at the pace it was recorded
+        const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                     std::chrono::duration<double>(shot->stamp.timestamp_s));
+        std::unique_lock lock(mutex_);
+        if (changed_.wait_until(lock, due, [&] { return stopping_; })) return;
+        shot->captured_at = std::chrono::steady_clock::now();  // when a camera would have delivered it
+      }
+      if (shot && on_capture_) on_capture_(*shot);
+      std::unique_lock lock(mutex_);
+      if (stopping_) return;
+      if (!shot) break;
+      ++captured_;
+      if (queue_.size() >= capacity_) {
+        if (when_behind_ == WhenBehind::drop_oldest) {
+          queue_.pop_front();
+          ++dropped_;
+        } else {
+          changed_.wait(lock, [&] { return stopping_ || queue_.size() < capacity_; });
+          if (stopping_) return;
+        }
+      }
+      queue_.push_back(std::move(*shot));
+      lock.unlock();
+      changed_.notify_all();
+    }
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    error_ = std::current_exception();
+  }
+  {
+    std::lock_guard lock(mutex_);
+    ended_ = true;
+  }
+  changed_.notify_all();
+}
+
+bool FrameFeed::wait_for_frame_or_end(std::unique_lock<std::mutex>& lock, double timeout_s) {
+  return changed_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                           [&] { return !queue_.empty() || ended_; });
+}
+
+std::optional<Shot> FrameFeed::next(double timeout_s) {
+  std::unique_lock lock(mutex_);
+  if (!wait_for_frame_or_end(lock, timeout_s))
+    throw RunError("no frame from the " + std::string(describe(capture_->kind())) + " " + capture_->settings().source +
+                   " within " + std::to_string(timeout_s) + " s (frame_timeout_s)");
+  if (queue_.empty()) {
+    if (error_) std::rethrow_exception(error_);
+    return std::nullopt;
+  }
+  Shot shot = std::move(queue_.front());
+  queue_.pop_front();
+  lock.unlock();
+  changed_.notify_all();
+  return shot;
+}
+
+bool FrameFeed::ended(double timeout_s) {
+  std::unique_lock lock(mutex_);
+  if (!wait_for_frame_or_end(lock, timeout_s)) return false;
+  return queue_.empty() && ended_ && !error_;
+}
+
+std::int64_t FrameFeed::captured() const {
+  std::lock_guard lock(mutex_);
+  return captured_;
+}
+
+std::int64_t FrameFeed::dropped() const {
+  std::lock_guard lock(mutex_);
+  return dropped_;
+}
+
+}  // namespace touchcloud::camera

@@ -9,6 +9,7 @@
 #include "implicit_selection.hpp"
 #include "latent_variance.hpp"
 #include "touchcloud/error.hpp"
+#include "touchcloud/parallel_ranges.hpp"
 
 namespace touchcloud::gp {
 
@@ -232,16 +233,20 @@ void ImplicitSurface::require_touches() const {
   if (n_ == 0) throw InputError("implicit surface: no touches yet, nothing to predict from");
 }
 
-Eigen::VectorXd ImplicitSurface::mean(const Eigen::Ref<const Eigen::MatrixX3d>& q) const {
+Eigen::VectorXd ImplicitSurface::mean(const Eigen::Ref<const Eigen::MatrixX3d>& q, int threads) const {
   require_touches();
   const ImplicitKernel kernel(options_.kernel, h_);
+  const Eigen::Matrix3Xd x = x_.topRows(n_).transpose();  // a point per column: contiguous
   Eigen::VectorXd out(q.rows());
-  for (Eigen::Index j = 0; j < q.rows(); ++j) {
-    const Eigen::Vector3d p = q.row(j).transpose();
-    double sum = prior(p);
-    for (Eigen::Index i = 0; i < n_; ++i) sum += alpha_[i] * kernel.covariance((x_.row(i).transpose() - p).norm());
-    out[j] = sum;
-  }
+  // Each query on its own, in one order: the same values whatever the thread count.
+  for_each_block(static_cast<std::size_t>(q.rows()), resolve_threads(threads), 64, [&](std::size_t begin, std::size_t end) {
+    for (auto j = static_cast<Eigen::Index>(begin); j < static_cast<Eigen::Index>(end); ++j) {
+      const Eigen::Vector3d p = q.row(j).transpose();
+      double sum = prior(p);
+      for (Eigen::Index i = 0; i < n_; ++i) sum += alpha_[i] * kernel.covariance((x.col(i) - p).norm());
+      out[j] = sum;
+    }
+  });
   return out;
 }
 

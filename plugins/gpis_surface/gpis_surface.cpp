@@ -28,6 +28,7 @@ class GpisSurface final : public Stage {
   double margin_mm_ = 5.0;
   std::int64_t samples_ = 20000;
   std::optional<std::string> mesh_path_;
+  std::int64_t threads_ = 0;
   std::optional<gp::ImplicitSurface> model_;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
@@ -56,6 +57,8 @@ class GpisSurface final : public Stage {
         .doc("the grid's box reaches this far beyond the touched points");
     p.add("samples", samples_, std::int64_t{20000}).at_least(1).unit("points")
         .doc("points sampled uniformly by area on the mesh, the cloud out");
+    p.add("threads", threads_, std::int64_t{0}).at_least(0).unit("threads")
+        .doc("threads of the mean on the grid (0: one per core); the surface is the same for any count");
     p.add("mesh", mesh_path_).output_file()
         .doc("PLY file in the output folder for the last mesh, with each vertex's variance (mm^2); not set: none");
   }
@@ -117,7 +120,7 @@ class GpisSurface final : public Stage {
     ctx.metric("jitter_mm2", update.jitter_mm2, "mm^2");
 
     const gp::SampleGrid grid = gp::grid_around(model_->contact_points(), margin_mm_, static_cast<int>(cells_));
-    mesh_ = gp::zero_level_set(grid, model_->mean(grid.sample_points()));
+    mesh_ = gp::zero_level_set(grid, model_->mean(grid.sample_points(), static_cast<int>(threads_)));
     if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
     ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
     auto out = std::make_shared<PointCloud>();

@@ -203,3 +203,11 @@ TEST(ImplicitSurface, RefusesEmptyAndDegenerateTouches) {
   EXPECT_EQ(s.touches(), 1u);
   EXPECT_EQ(s.contact_points().rows(), 9);
 }
+
+// The mean on many threads is the mean on one, bit for bit.
+TEST(ImplicitSurface, MeanSameOnAnyThreadCount) {
+  const gp::ImplicitSurface s = implicit_fitted(SphereObject().touches(6));
+  const Eigen::MatrixX3d q = Eigen::MatrixX3d::Random(1000, 3) * 30;
+  const Eigen::VectorXd one = s.mean(q, 1), three = s.mean(q, 3);
+  EXPECT_EQ(one, three);
+}

@@ -79,7 +79,9 @@ class ImplicitSurface {
   // Signed distance estimate at each row (mm), and its latent variance (mm^2,
   // finite and >= 0: rounding below 0 is clamped and counted in *clamped,
   // anything not finite a RunError). InputError before the first touch.
-  Eigen::VectorXd mean(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm) const;
+  // The mean runs on `threads` threads (0: every hardware thread) with the
+  // same result for any count.
+  Eigen::VectorXd mean(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, int threads = 1) const;
   Eigen::VectorXd variance(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, std::size_t* clamped = nullptr) const;
 
   Eigen::Index training_size() const { return n_; }

@@ -59,10 +59,9 @@ bool evaluate_implicit_lml(ImplicitKernelKind kind, const Eigen::MatrixX3d& p, c
 
 }  // namespace
 
-SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& p, const Eigen::VectorXd& r,
+SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& p, const Eigen::VectorXd& r, double diameter_mm,
                                              const ImplicitSurfaceOptions& options) {
-  const Eigen::Vector3d extent = p.colwise().maxCoeff() - p.colwise().minCoeff();
-  const double diameter = std::max(extent.norm(), options.offset_mm);
+  const double diameter = std::max(diameter_mm, options.offset_mm);
   const double spread = std::max(r.squaredNorm() / static_cast<double>(r.size()), options.offset_mm * options.offset_mm);
   HyperparameterBounds bounds;
   bounds.lower.signal_variance_mm2 = 1e-3 * spread;

@@ -14,7 +14,8 @@
 
 namespace touchcloud::gp {
 
+// `diameter_mm`: of all the training points, which the subset may not span.
 SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& points_mm, const Eigen::VectorXd& residual_mm,
-                                             const ImplicitSurfaceOptions& options);
+                                             double diameter_mm, const ImplicitSurfaceOptions& options);
 
 }  // namespace touchcloud::gp

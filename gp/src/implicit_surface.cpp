@@ -145,11 +145,13 @@ void ImplicitSurface::append_training(const ImplicitTouch& touch, const Eigen::M
   contacts_.bottomRows(k) = touch.points_mm;
 }
 
-bool ImplicitSurface::scale_covers_data() const {
-  if (options_.kernel != ImplicitKernelKind::thin_plate) return true;
+double ImplicitSurface::diameter_mm() const {
   const Eigen::MatrixX3d x = x_.topRows(n_);
-  const Eigen::Vector3d extent = x.colwise().maxCoeff() - x.colwise().minCoeff();
-  return extent.norm() <= h_.lengthscale_mm;
+  return (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+}
+
+bool ImplicitSurface::scale_covers_data() const {
+  return options_.kernel != ImplicitKernelKind::thin_plate || diameter_mm() <= h_.lengthscale_mm;
 }
 
 void ImplicitSurface::set_prior() {
@@ -167,7 +169,7 @@ ImplicitUpdate ImplicitSurface::select() {
     p.row(j) = x_.row(i);
     r[j] = f_[i] - prior(x_.row(i).transpose());
   }
-  const SearchResult result = select_implicit_hyperparameters(p, r, options_);
+  const SearchResult result = select_implicit_hyperparameters(p, r, diameter_mm(), options_);
   h_ = result.hyperparameters;
   selected_at_ = n_;
   refactorise();

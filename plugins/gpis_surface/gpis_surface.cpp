@@ -104,12 +104,7 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = (*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
-    gp::ImplicitUpdate update;
-    try {
-      update = model_->add(touch);
-    } catch (const InputError& e) {
-      throw RunError(e.what());  // the data of a run, not the pipeline, is at fault
-    }
+    const gp::ImplicitUpdate update = model_->add(touch);  // InputError names a touch it refuses
     static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
     ctx.metric("update_path", kPath[static_cast<int>(update.path)]);
     if (update.lml) ctx.metric("lml", *update.lml);

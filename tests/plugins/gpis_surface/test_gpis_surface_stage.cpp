@@ -82,7 +82,7 @@ TEST_F(GpisSurfaceStage, RefusesTouchesWithoutSide) {
   try {
     h.process({{"cloud", cloud_of(t)}}, {"cloud"});
     FAIL() << "accepted";
-  } catch (const RunError& e) {
+  } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("inside and outside cannot be told apart"), std::string::npos) << e.what();
   }
   try {

@@ -99,6 +99,7 @@ class ImplicitSurface {
   // thin_plate: whether R still spans the data (its kernel is a covariance
   // only up to R); a touch that reaches farther selects again.
   bool scale_covers_data() const;
+  double diameter_mm() const;  // of the training points' bounding box
   ImplicitUpdate select();
   void refactorise();           // L from all training points at h_, with the jitter schedule
   bool extend_factor(Eigen::Index from);  // bordered update for rows [from, n_); false: not positive

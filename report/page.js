@@ -29,10 +29,17 @@
 
   // Header.
   var run = data.run;
-  document.getElementById("tc-title").textContent = "touchcloud run report: " + run.pipeline;
+  document.getElementById("tc-title").textContent =
+    "touchcloud run report: " + run.pipeline + (run.scene ? " on " + run.scene : "");
   document.getElementById("tc-subtitle").textContent = run.file + ", seed " + run.seed + ", ran in " + fmt(run.wall_time_s) +
       " s (+" + fmt(run.load_time_s) + " s loading)" + (data.folder_runs > 1 ? "; the 3D view, times and tables show run '" +
       run.label + "', the chamfer plot all " + data.folder_runs + " runs of the folder" : "");
+  // Accuracy beside what it hides: how much of the truth the run missed.
+  var titles = { accuracy: "accuracy (Eq. 11)", completeness: "completeness", fscore: "F-score", coverage: "coverage",
+                 masked_points: "surface points lost to a mask" };
+  document.getElementById("tc-headline").textContent = (data.headline || []).map(function (h) {
+    return titles[h.role] + " " + fmt(h.value) + (h.unit ? " " + h.unit : "") + " (" + h.metric + ")";
+  }).join("; ");
   var missing = document.getElementById("tc-missing");
   data.missing.forEach(function (m) { missing.appendChild(el("li", "not shown: " + m)); });
 

@@ -18,7 +18,10 @@ import sys
 SOURCE = pathlib.Path(__file__).resolve().parents[1]
 PIPELINE = "pipelines/fox_mask_active.yaml"
 KEYS = [
-    "score.chamfer_est_to_gt", "score.final_chamfer_mm", "score.convergence_touches",
+    "score.chamfer_est_to_gt", "score.chamfer_gt_to_est", "score.fscore", "score.recall",
+    "score.final_chamfer_mm", "score.convergence_touches",
+    "surface.masked_points",
+    "plan.unreachable_cells", "plan.cells_without_gain", "plan.touches_planned",
     "dedup.added_points", "dedup.total_points",
     "plan.target_x_mm", "plan.target_y_mm",
     "fit.update_path", "fit.selections", "fit.jitter_mm2",

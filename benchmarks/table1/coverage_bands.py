@@ -63,11 +63,13 @@ def bands_after(args, np, obj, sensor, touches, work):
     for kv in METHODS[args.method] + args.set:
         cmd += ["--set", kv]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    name = os.path.splitext(os.path.basename(pipeline))[0]
-    surface = read_pcd_xyz(os.path.join(out, f"{name}_surface.pcd"), np)
-    points = read_pcd_xyz(os.path.join(out, f"{name}_touch_points.pcd"), np)
     with open(os.path.join(out, "summary.json")) as f:
-        chamfer = json.load(f)["metrics"]["score.final_chamfer_mm"]["value"]
+        summary = json.load(f)
+    chamfer = summary["metrics"]["score.final_chamfer_mm"]["value"]
+    # The files by their roles, whatever the pipeline names them.
+    by_role = {a["role"]: a["file"] for a in summary["artifacts"] if a.get("file")}
+    surface = read_pcd_xyz(os.path.join(out, by_role["reconstructed_surface"]), np)
+    points = read_pcd_xyz(os.path.join(out, by_role["touch_points"]), np)
     near = nearest_xy_distance(np, surface, points)
     files, shares = [], []
     for k, (lo, hi) in enumerate(zip(BANDS_MM[:-1], BANDS_MM[1:])):

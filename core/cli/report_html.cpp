@@ -49,7 +49,10 @@ std::string report_html(const nlohmann::json& data) {
   // "</" inside JSON strings may be written "<\/" (a valid JSON escape).
   std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   replace_all(json, "</", "<\\/");
-  const std::string title = "touchcloud report: " + data["run"].value("pipeline", std::string("run"));
+  // Named after the object too: one pipeline runs on many scenes.
+  const std::string scene = data["run"].value("scene", std::string());
+  const std::string title = "touchcloud report: " + data["run"].value("pipeline", std::string("run")) +
+                            (scene.empty() ? "" : " on " + scene);
   // The slots are filled last to first so that no inserted text is searched.
   put(page, "@PAGE_JS@", inline_text(report_assets::page_js()));
   put(page, "@DATA@", json);

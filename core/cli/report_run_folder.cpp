@@ -254,9 +254,22 @@ json report_data(const std::vector<RunFolder>& runs) {
   data["run"] = {{"label", run.label},
                  {"pipeline", s["pipeline"].value("name", "")},
                  {"file", s["pipeline"].value("file", "")},
+                 {"scene", s.contains("scene") ? s["scene"].value("name", "") : ""},
                  {"seed", s.value("seed", json())},
                  {"wall_time_s", s.value("wall_time_s", json())},
                  {"load_time_s", s.value("load_time_s", json())}};
+
+  // The run's headline: its accuracy (Eq. 11) beside what the accuracy hides
+  // (completeness, F-score, coverage) and the surface a mask dropped, each
+  // the last value of the first metric of its role.
+  json headline = json::array();
+  for (const char* role : {"accuracy", "completeness", "fscore", "coverage", "masked_points"})
+    if (const std::vector<std::string> named = metrics_of_role(s, role); !named.empty()) {
+      const json& m = s["metrics"][named.front()];
+      headline.push_back({{"role", role}, {"metric", named.front()}, {"value", m.value("value", json())},
+                          {"unit", m.value("unit", "")}});
+    }
+  data["headline"] = headline;
 
   // Chamfer per touch, every run, named by its setting (what was varied) and seed.
   const RunNames names = name_runs(runs);

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "progress_line.hpp"
 #include "touchcloud/pipeline.hpp"
@@ -10,6 +11,51 @@
 #include "verbs.hpp"
 
 namespace touchcloud::cli {
+
+namespace {
+
+// The run's headline from the metrics' roles: its accuracy (Eq. 11) beside
+// what accuracy alone hides, how much of the ground truth the reconstruction
+// missed (completeness, F-score, coverage) of the same stage. Empty when no
+// metric is of role accuracy.
+std::string headline(const RunRecord& record) {
+  const auto with_role = [&](MetricRole role, const std::string& stage) -> const MetricSeries* {
+    for (const auto& [name, series] : record.metrics)
+      if (series.spec.role == role && !series.values.empty() && (stage.empty() || name.rfind(stage, 0) == 0))
+        return &series;
+    return nullptr;
+  };
+  std::string accuracy_name;
+  for (const auto& [name, series] : record.metrics)
+    if (series.spec.role == MetricRole::accuracy && !series.values.empty()) {
+      accuracy_name = name;
+      break;
+    }
+  if (accuracy_name.empty()) return "";
+  const MetricSeries& accuracy = record.metrics.at(accuracy_name);
+  const std::string stage = accuracy_name.substr(0, accuracy_name.find('.') + 1);
+  std::ostringstream s;
+  s << std::defaultfloat << std::setprecision(6) << "headline: " << accuracy_name << " "
+    << accuracy.values.back() << (accuracy.spec.unit.empty() ? "" : " " + accuracy.spec.unit);
+  const std::pair<MetricRole, const char*> beside[] = {
+      {MetricRole::completeness, "completeness"}, {MetricRole::fscore, "F-score"}, {MetricRole::coverage, "coverage"}};
+  std::ostringstream measured;
+  measured << std::setprecision(6);
+  for (const auto& [role, title] : beside)
+    if (const MetricSeries* m = with_role(role, stage))
+      measured << (measured.tellp() > 0 ? ", " : "") << title << " " << m->values.back()
+               << (m->spec.unit.empty() ? "" : " " + m->spec.unit);
+  s << "; " << (measured.tellp() > 0 ? measured.str()
+                                     : std::string("coverage not measured (the scoring stage computes no "
+                                                   "completeness, F-score or recall: add them to its metrics)"));
+  // Surface a mask dropped is missing, not better: said beside the score.
+  for (const auto& [name, series] : record.metrics)
+    if (series.spec.role == MetricRole::masked_points && !series.values.empty() && series.values.back() > 0)
+      s << "; " << name << " " << series.values.back() << " (surface lost to a mask)";
+  return s.str();
+}
+
+}  // namespace
 
 Action* add_run_verb(CLI::App& app) {
   struct Options {
@@ -84,6 +130,7 @@ Action* add_run_verb(CLI::App& app) {
       for (const auto& f : r.record.outputs) std::cout << ", " << f;
       std::cout << ")\n";
       if (o.report) std::cout << "wrote " << write_report(options.out_dir).string() << "\n";
+      if (const std::string line = headline(r.record); !line.empty()) std::cout << line << "\n";
       return kExitOk;
     };
   });

@@ -17,11 +17,20 @@ std::optional<std::string> output_name_problem(const std::string& file_name) {
   return std::nullopt;
 }
 
+namespace {
+std::string replaced(std::string text, const std::string& field, const std::string& by) {
+  for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + by.size()))
+    text.replace(at, field.size(), by);
+  return text;
+}
+}  // namespace
+
 std::string with_pipeline_name(std::string file_name, const std::string& pipeline_name) {
-  const std::string field = kPipelineField;
-  for (auto at = file_name.find(field); at != std::string::npos; at = file_name.find(field, at + pipeline_name.size()))
-    file_name.replace(at, field.size(), pipeline_name);
-  return file_name;
+  return replaced(std::move(file_name), kPipelineField, pipeline_name);
+}
+
+std::string with_scene_name(std::string file_name, const std::string& scene_name) {
+  return replaced(std::move(file_name), kSceneField, scene_name);
 }
 
 }  // namespace touchcloud

@@ -21,5 +21,9 @@ std::optional<std::string> output_name_problem(const std::string& file_name);
 inline constexpr const char* kPipelineField = "{pipeline}";
 // `file_name` with each "{pipeline}" replaced by the pipeline's name.
 std::string with_pipeline_name(std::string file_name, const std::string& pipeline_name);
+// The placeholder replaced by the name of the run's scene, so one pipeline
+// run on a user's object (--scene) names its files after that object.
+inline constexpr const char* kSceneField = "{scene}";
+std::string with_scene_name(std::string file_name, const std::string& scene_name);
 
 }  // namespace touchcloud

@@ -128,6 +128,10 @@ class ResolvedPipeline {
  public:
   std::string name;
   std::filesystem::path file;
+  // The run's one scene (top-level `scene:` or --scene): its file and its
+  // `name:` (the file's stem where it has none); empty without one.
+  std::filesystem::path scene_file;
+  std::string scene_name;
   std::vector<ResolvedNode> nodes;        // in execution order
   std::vector<ResolvedStage*> stages;     // every stage, in execution order
   std::vector<ResolvedLoop*> loops;

@@ -41,6 +41,7 @@ class Resolver {
     pipeline->file = doc_.file;
     pipeline->overrides = overrides;
     pipeline_ = pipeline.get();
+    name_scene(*pipeline);
     pipeline->nodes = resolve_scope(doc_.nodes, {});
     if (diags_.empty()) check_one_scene();
     if (diags_.empty()) check_wiring(doc_.nodes);
@@ -201,6 +202,14 @@ class Resolver {
         // "{pipeline}" names outputs after the pipeline, so a copy of a
         // shipped pipeline renamed for another object names its files anew.
         *value = with_pipeline_name(std::get<std::string>(*value), doc_.name);
+        if (std::get<std::string>(*value).find(kSceneField) != std::string::npos) {
+          if (pipeline_->scene_name.empty()) {
+            error(p.where, who + ", parameter '" + p.name + "': '" + kSceneField +
+                               "' needs the run's scene: a top-level 'scene: FILE' or --scene FILE");
+            continue;
+          }
+          *value = with_scene_name(std::get<std::string>(*value), pipeline_->scene_name);
+        }
         // `validate` refuses what `run` would: a file outside the output folder.
         if (auto why = output_name_problem(std::get<std::string>(*value))) {
           error(p.where, who + ", parameter '" + p.name + "': " + *why);
@@ -221,6 +230,23 @@ class Resolver {
           std::none_of(n.params.begin(), n.params.end(), [&](const ParamDoc& p) { return p.name == spec.name; }))
         error(n.where, who + ": parameter '" + spec.name + "' names an input file and must be set");
     return s;
+  }
+
+  // The run's scene by file and name, for summary.json, the report's title
+  // and "{scene}" in output names. A file that cannot be read is left to the
+  // stages that take it, which say so with its place.
+  void name_scene(ResolvedPipeline& pipeline) const {
+    if (!doc_.scene) return;
+    fs::path file = doc_.scene->value.as<std::string>("");
+    if (file.empty()) return;
+    if (file.is_relative() && !doc_.scene->from_command_line) file = doc_.file.parent_path() / file;
+    pipeline.scene_file = fs::absolute(file).lexically_normal();
+    pipeline.scene_name = pipeline.scene_file.stem().string();
+    try {
+      const YAML::Node scene = YAML::LoadFile(pipeline.scene_file.string());
+      if (scene.IsMap() && scene["name"] && scene["name"].IsScalar()) pipeline.scene_name = scene["name"].as<std::string>();
+    } catch (const YAML::Exception&) {
+    }
   }
 
   // The pipeline's scene goes to a stage that names none; --scene replaces

@@ -26,6 +26,10 @@ const char* to_string(MetricDirection direction) {
 const char* to_string(MetricRole role) {
   switch (role) {
     case MetricRole::accuracy: return "accuracy";
+    case MetricRole::completeness: return "completeness";
+    case MetricRole::fscore: return "fscore";
+    case MetricRole::coverage: return "coverage";
+    case MetricRole::masked_points: return "masked_points";
     case MetricRole::points_added: return "points_added";
     case MetricRole::touch_x_mm: return "touch_x_mm";
     case MetricRole::touch_y_mm: return "touch_y_mm";

@@ -13,6 +13,7 @@ nlohmann::json to_json(const ParamValue& v) {
 nlohmann::json make_summary(const ResolvedPipeline& pipeline, const RunResult& result, const RunOptions& options) {
   nlohmann::json j;
   j["pipeline"] = {{"name", pipeline.name}, {"file", pipeline.file.string()}};
+  if (!pipeline.scene_file.empty()) j["scene"] = {{"name", pipeline.scene_name}, {"file", pipeline.scene_file.string()}};
   j["seed"] = options.seed;
   nlohmann::json overrides = nlohmann::json::array();
   for (const auto& o : pipeline.overrides) overrides.push_back({{"key", o.key}, {"value", o.value}, {"origin", o.origin}});

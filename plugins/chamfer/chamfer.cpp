@@ -71,15 +71,20 @@ class Chamfer final : public Stage {
     ports.metric("chamfer_est_to_gt", "mm", "mean distance from each estimated point to the ground truth (Eq. 11)")
         .lower_is_better()
         .role(MetricRole::accuracy);
-    ports.metric("chamfer_gt_to_est", "mm", "mean distance from each ground-truth point to the estimate").lower_is_better();
+    ports.metric("chamfer_gt_to_est", "mm", "mean distance from each ground-truth point to the estimate (completeness)")
+        .lower_is_better()
+        .role(MetricRole::completeness);
     ports.metric("chamfer_symmetric", "mm", "mean of the two chamfer directions").lower_is_better();
     ports.metric("p95_est_to_gt", "mm", "95th percentile of the estimate's distances to the ground truth").lower_is_better();
     ports.metric("hausdorff", "mm", "largest distance from either cloud to the other").lower_is_better();
-    ports.metric("fscore", "", "harmonic mean of precision and recall within fscore_threshold_mm").higher_is_better();
+    ports.metric("fscore", "", "harmonic mean of precision and recall within fscore_threshold_mm")
+        .higher_is_better()
+        .role(MetricRole::fscore);
     ports.metric("precision", "", "share of estimated points within fscore_threshold_mm of the ground truth")
         .higher_is_better();
-    ports.metric("recall", "", "share of ground-truth points within fscore_threshold_mm of the estimate")
-        .higher_is_better();
+    ports.metric("recall", "", "share of ground-truth points within fscore_threshold_mm of the estimate (coverage)")
+        .higher_is_better()
+        .role(MetricRole::coverage);
     ports.metric("final_chamfer_mm", "mm", "chamfer_est_to_gt (Eq. 11) of the last item").final().lower_is_better();
     ports.metric("convergence_touches", "touches", "items after which chamfer_est_to_gt stays within 5 % of its final value")
         .final()

@@ -14,7 +14,7 @@ class CloudWriter final : public Stage {
     p.add("path", path_, std::string("cloud.pcd"))
         .output_file()
         .doc("file in the output folder, .pcd or .ply; '{iteration}' becomes the loop iteration, '{pipeline}' the "
-             "pipeline's name");
+             "pipeline's name, '{scene}' the run's scene's name");
     p.add("binary", binary_, true).doc("binary encoding (false: ASCII, larger but readable)");
     p.add("role", role_, ArtifactRole::cloud,
           {{"cloud", ArtifactRole::cloud},

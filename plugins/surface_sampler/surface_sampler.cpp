@@ -69,6 +69,9 @@ class SurfaceSampler final : public Stage {
     ports.metric("uncertain_points", "points", "with max_sd_mm: lattice points whose standard deviation exceeds it");
     ports.metric("off_data_points", "points", "with points wired: lattice points whose mean swings off the data beside "
                  "them");
+    ports.metric("masked_points", "points", "lattice points dropped by any mask: surface lost, which completeness "
+                 "and recall count as missed").role(MetricRole::masked_points);
+    ports.metric("lattice_points", "points", "lattice points before any mask").final();
   }
   void on_check(RunContext&) override { area_ = workspace_.resolve(); }
   void on_configure(RunContext& ctx) override { workspace_.record_used(area_, ctx); }
@@ -138,6 +141,9 @@ class SurfaceSampler final : public Stage {
       }
     report(outside, unsure, worst, ctx);
     if (near) report_off_data(off, worst_off, worst_off_at, ctx);
+    ctx.metric("masked_points", static_cast<double>(static_cast<long>(nx) * ny - static_cast<long>(cloud->size())),
+               "points");
+    last_counts_ = {outside, off, unsure, static_cast<long>(nx) * ny - static_cast<long>(cloud->size())};
     last_surface_ = surface;
     last_cloud_ = cloud;
     io.output("cloud", last_cloud_);
@@ -191,6 +197,33 @@ class SurfaceSampler final : public Stage {
     ctx.note("extrapolation", s.str());
   }
 
+  // The warnings' notes hold the last call's counts: a run's summary states
+  // what its final surface lost, not what an early touch's did.
+  void on_finish(RunContext& ctx) override {
+    ctx.metric("lattice_points", static_cast<double>(resolution_[0]) * resolution_[1], "points");
+    const auto& [outside, off, unsure, masked] = last_counts_;
+    const auto verb = [](OutsideData d) { return d == OutsideData::Mask ? "dropped" : "kept"; };
+    if (masked_total_ > 0)
+      ctx.note("extrapolation", "at the last call " + std::to_string(outside) + " lattice points lay more than " +
+                                    number(outside_margin_mm_) + " mm outside the fitted points' z range (" +
+                                    verb(outside_) + "); the surface there is extrapolation, not measurement");
+    if (near_warned_)
+      ctx.note("off_data", "at the last call " + std::to_string(off) + " lattice points swung more than " +
+                               number(near_margin_mm_) + " mm off the fitted points within " +
+                               number(near_radius_mm_) + " mm (" + verb(near_) + ")");
+    if (masked > 0)
+      ctx.note("masked", "at the last call " + std::to_string(masked) + " of " +
+                             std::to_string(static_cast<long>(resolution_[0]) * resolution_[1]) +
+                             " lattice points were dropped by the masks (outside_data, near_data, max_sd_mm): "
+                             "surface lost, counted as missed coverage");
+  }
+  static std::string number(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+  std::array<long, 4> last_counts_{};  // extrapolated, off data, uncertain, masked
   SurfaceModelPtr last_surface_;
   CloudConstPtr last_cloud_;
 };

@@ -1,4 +1,4 @@
-// touchcloud-make-scene MESH --name NAME [--scale S] [--out DIR] [--cell-mm C]
+// touchcloud-make-scene MESH --name NAME [--scale S] [--out DIR] [--cell-mm C] [--sensor FAMILY]
 // A user's object, one command from its mesh (STL, OBJ or PLY, any unit via
 // --scale) to DIR/NAME/: the mesh as given, a scene that centres it on the
 // table (its footprint around the origin, its bottom at z = 0) with a
@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -46,16 +47,80 @@ double smallest_cell_mm(double side_mm) {
   return std::ceil(cell / unit - 1e-9) * unit;
 }
 
+enum class SensorChoice { MarkerGelStereo, ColourGelStereo, GelSight };
+
 struct Options {
   fs::path mesh, out = "sample_clouds";
+  SensorChoice sensor = SensorChoice::MarkerGelStereo;
   std::string name;
   double scale = 1.0, cell_mm = 8.6;
 };
 
+// The `sensor:`, `robot:` and `effects:` sections of each family, as its
+// shipped fox-mask scene has them (sample_clouds/fox_mask/scene*.yaml).
+const char* kMarkerGelStereo =
+    "sensor:\n"
+    "  gel: {diameter_mm: 65}\n"
+    "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
+    "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"
+    "  cameras:\n"
+    "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"
+    "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"
+    "    baseline_mm: 30\n"
+    "    plate_gap_mm: 45\n"
+    "  fps: 30\n"
+    "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
+    "effects: [contact, refraction]\n";
+const char* kColourGelStereo =
+    "sensor:\n"
+    "  gel: {diameter_mm: 65}\n"
+    "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
+    "  pattern: colour_pattern\n"
+    "  colour_pattern: {feature_mm: 1.0, opacity: 0.8, seed: 1, vignetting: 0.1, image_size_px: [640, 360]}\n"
+    "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"
+    "  cameras:\n"
+    "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"
+    "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"
+    "    baseline_mm: 30\n"
+    "    plate_gap_mm: 45\n"
+    "  fps: 30\n"
+    "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
+    "effects: [contact, elastic_spread, refraction, render]\n";
+const char* kGelSight =
+    "sensor:\n"
+    "  family: gelsight\n"
+    "  name: gelsight_mini\n"
+    "  image_size_px: [320, 240]\n"
+    "  mm_per_px: 0.06             # a 19.2 x 14.4 mm flat pad\n"
+    "  gel_thickness_mm: 2.5\n"
+    "  lights:\n"
+    "    - {direction: [0.8192, 0.0, 0.5736], colour_rgb: [110, 0, 0]}\n"
+    "    - {direction: [-0.4096, 0.7094, 0.5736], colour_rgb: [0, 110, 0]}\n"
+    "    - {direction: [-0.4096, -0.7094, 0.5736], colour_rgb: [0, 0, 110]}\n"
+    "  reflectance: {diffuse: 1.0, specular: 0.15, shininess: 8}\n"
+    "  ambient_rgb: [40, 40, 40]\n"
+    "  vignetting: 0.1\n"
+    "  fps: 25\n"
+    "robot: {speed_mm_s: 3, approach_speed_mm_s: 10, press_depth_mm: 0.8, safe_clearance_mm: 2, max_contact_depth_mm: 2.5}\n"
+    "effects: [contact, render]\n";
+
+struct Family {
+  const char* title;     // in the scene's first line
+  const char* sections;  // sensor, robot, effects
+  double contact_mm;     // the gel's extent: a dome's diameter, a flat pad's shorter side
+  bool dome;             // a hemisphere lowered onto the object: the reach check applies
+};
+const std::map<SensorChoice, Family> kFamilies = {
+    {SensorChoice::MarkerGelStereo, {"the marker GelStereo Palm 2.0", kMarkerGelStereo, kGelDiameterMm, true}},
+    {SensorChoice::ColourGelStereo, {"the colour-pattern GelStereo", kColourGelStereo, kGelDiameterMm, true}},
+    {SensorChoice::GelSight, {"a GelSight Mini-like monocular sensor", kGelSight, 14.4, false}},
+};
+
 std::string scene_yaml(const Options& o, const Eigen::Vector3d& shift, const Eigen::AlignedBox3d& placed, int gx, int gy) {
+  const Family& family = kFamilies.at(o.sensor);
   std::ostringstream s;
   s << "# " << o.name << " (" << placed.sizes().x() << " x " << placed.sizes().y() << " x " << placed.sizes().z()
-    << " mm) on the table, touched by the GelStereo Palm 2.0.\n"
+    << " mm) on the table, touched by " << family.title << ".\n"
     << "# Written by touchcloud-make-scene from " << o.mesh.filename().string() << "; edit freely.\n"
     << "name: " << o.name << "\n"
     << "object:\n"
@@ -67,54 +132,48 @@ std::string scene_yaml(const Options& o, const Eigen::Vector3d& shift, const Eig
     << "  x_mm: [" << placed.min().x() << ", " << placed.max().x() << "]\n"
     << "  y_mm: [" << placed.min().y() << ", " << placed.max().y() << "]\n"
     << "  grid: [" << gx << ", " << gy << "]\n"
-    << "sensor:\n"
-    << "  gel: {diameter_mm: " << kGelDiameterMm << "}\n"
-    << "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
-    << "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"
-    << "  cameras:\n"
-    << "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"
-    << "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"
-    << "    baseline_mm: 30\n"
-    << "    plate_gap_mm: 45\n"
-    << "  fps: 30\n"
-    << "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
-    << "effects: [contact, refraction]\n";
+    << family.sections;
   return s.str();
 }
 
 // What does not fit, one line each; empty when all does.
 std::vector<std::string> check_fit(const ObjectSpec& spec, const scoring::TriangleMesh& mesh,
-                                   const Eigen::AlignedBox3d& placed, int gx, int gy) {
+                                   const Eigen::AlignedBox3d& placed, int gx, int gy, const Family& family) {
   std::vector<std::string> problems;
   const Eigen::Vector3d size = placed.sizes();
   if (auto why = scoring::unit_mistake(mesh))
     problems.push_back(*why + (size.maxCoeff() < 5.0 ? " (--scale 1000 or 10)" : " (--scale 0.001)"));
-  if (size.x() < kGelDiameterMm && size.y() < kGelDiameterMm)
-    problems.push_back("the footprint is smaller than the gel (" + num(kGelDiameterMm) +
+  if (family.dome && size.x() < family.contact_mm && size.y() < family.contact_mm)
+    problems.push_back("the footprint is smaller than the gel (" + num(family.contact_mm) +
                        " mm): every touch covers the whole object");
+  if (!family.dome) return problems;  // a flat pad: no dome to stop on a wall
   const auto surface = simulation::make_object_surface(spec);
   const double r = 0.5 * kGelDiameterMm;
-  const double cx = size.x() / gx, cy = size.y() / gy;
+  WorkspaceGrid grid;
+  grid.x_mm = Eigen::Vector2d(placed.min().x(), placed.max().x());
+  grid.y_mm = Eigen::Vector2d(placed.min().y(), placed.max().y());
+  grid.cells_x = gx;
+  grid.cells_y = gy;
+  const std::vector<double> gaps = simulation::apex_gaps_mm(*surface, grid, r);
   int unreachable = 0;
   std::ostringstream worst;
   double worst_gap = 0;
-  for (int j = 0; j < gy; ++j)
-    for (int i = 0; i < gx; ++i) {
-      const Eigen::Vector2d c(placed.min().x() + (i + 0.5) * cx, placed.min().y() + (j + 0.5) * cy);
-      const double gap = simulation::apex_gap_mm(*surface, c, r);
-      if (gap <= simulation::kDefaultReachToleranceMm) continue;
-      ++unreachable;
-      if (gap > worst_gap) {
-        worst_gap = gap;
-        worst.str("");
-        worst << "(" << c.x() << ", " << c.y() << ") mm, where it stops " << gap << " mm above the surface";
-      }
+  for (int c = 0; c < grid.cells(); ++c) {
+    const double gap = gaps[static_cast<std::size_t>(c)];
+    if (gap <= simulation::kDefaultReachToleranceMm) continue;
+    ++unreachable;
+    if (gap > worst_gap) {
+      worst_gap = gap;
+      const Eigen::Vector2d at = grid.cell_centre_mm(c);
+      worst.str("");
+      worst << "(" << at.x() << ", " << at.y() << ") mm, where it stops " << gap << " mm above the surface";
     }
+  }
   if (unreachable > 0)
     problems.push_back(std::to_string(unreachable) + " of " + std::to_string(gx * gy) +
                        " grid cells cannot be reached by the gel (a hole or a wall narrower than its " +
                        num(kGelDiameterMm) + " mm); the worst at " + worst.str() +
-                       ": the simulator will report such touches and the surface there is extrapolation");
+                       ": the planner leaves such cells out and the surface there is extrapolation");
   return problems;
 }
 
@@ -148,7 +207,7 @@ int make_scene(const Options& o) {
   const scoring::TriangleMesh mesh = read_placed_object_mesh(spec);
   const double area = scoring::surface_area_mm2(mesh);
   if (!(area > 0)) throw InputError(o.mesh.string() + ": the mesh has no surface area");
-  const std::vector<std::string> problems = check_fit(spec, mesh, placed, gx, gy);
+  const std::vector<std::string> problems = check_fit(spec, mesh, placed, gx, gy, kFamilies.at(o.sensor));
 
   // Everything is computed before the first file is written.
   std::error_code ec;
@@ -175,6 +234,12 @@ int main(int argc, char** argv) {
   app.add_option("--name", o.name, "the object's name: the folder and the scene's name")->required();
   app.add_option("--scale", o.scale, "mesh units to mm (1000 for a mesh in metres)")->check(CLI::PositiveNumber);
   app.add_option("--out", o.out, "where the object's folder goes (default: sample_clouds)");
+  app.add_option("--sensor", o.sensor, "the sensor family the scene's sensor: section describes")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, SensorChoice>{
+          {"marker_gelstereo", SensorChoice::MarkerGelStereo},
+          {"colour_gelstereo", SensorChoice::ColourGelStereo},
+          {"gelsight", SensorChoice::GelSight}}))
+      ->default_str("marker_gelstereo");
   app.add_option("--cell-mm", o.cell_mm, "grid cell size over the footprint (default 8.6, the fox mask's)")
       ->check(CLI::PositiveNumber);
   try {

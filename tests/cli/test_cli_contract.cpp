@@ -16,6 +16,12 @@ namespace {
 const std::string kDemo = (touchcloud::test::source_dir() / "pipelines/downsample_cloud.yaml").string();
 const std::string kTestPlugins = "TOUCHCLOUD_PLUGIN_PATH=" TOUCHCLOUD_TEST_PLUGIN_DIR;
 
+touchcloud::PointCloud cloud_of(std::initializer_list<std::array<float, 3>> points) {
+  touchcloud::PointCloud c;
+  for (const auto& p : points) c.push_back(pcl::PointXYZ(p[0], p[1], p[2]));
+  return c;
+}
+
 bool has_line_starting(const std::string& text, const std::string& prefix) {
   std::size_t at = 0;
   while (at < text.size()) {
@@ -119,6 +125,57 @@ TEST(Cli, SceneNamesTheObjectOfEveryStageAndAMismatchIsRefused) {
         << r.err;
   }
   EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+// A run is named after its scene too: "{scene}" in an output name becomes the
+// scene's `name:`, summary.json records the scene, the report's title names
+// it; without a scene "{scene}" is refused at validate.
+TEST(Cli, OutputsAndTheReportAreNamedAfterTheRunsScene) {
+  touchcloud::test::TempDir dir;
+  touchcloud::test::save_pcd(dir / "est.pcd", cloud_of({{0, 0, 1}, {10, 0, 2}}));
+  write_file(dir / "cup.yaml", "name: my_cup\n");
+  const std::string body = "stages:\n  - id: read\n    plugin: cloud_reader\n    params: {path: est.pcd}\n"
+                           "  - id: write\n    plugin: cloud_writer\n    params: {path: '{scene}_surface.pcd'}\n"
+                           "    inputs: {cloud: read.cloud}\n";
+  write_file(dir / "p.yaml", "pipeline: p\nscene: cup.yaml\n" + body);
+  const auto r = run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / "out").string(), "--report"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out/my_cup_surface.pcd"));
+  const auto summary = nlohmann::json::parse(touchcloud::test::read_file(dir / "out/summary.json"));
+  EXPECT_EQ(summary["scene"]["name"], "my_cup");
+  EXPECT_EQ(summary["scene"]["file"], fs::absolute(dir / "cup.yaml").lexically_normal().string());
+  EXPECT_NE(touchcloud::test::read_file(dir / "out/report.html").find("<title>touchcloud report: p on my_cup</title>"),
+            std::string::npos);
+
+  write_file(dir / "q.yaml", "pipeline: q\n" + body);
+  const auto none = run_cli({"validate", (dir / "q.yaml").string()});
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("'{scene}' needs the run's scene"), std::string::npos) << none.err;
+}
+
+// The last line of a run puts the accuracy (Eq. 11) beside what it hides:
+// ground truth 0, 10, 20 mm on x, the estimate 1 mm above 0 and 2 mm above
+// 10: est -> gt 1.5 mm, gt -> est (3 + sqrt(104)) / 3 = 4.4 mm, F-score 0.4
+// and recall 1/3 at 1.5 mm.
+TEST(Cli, TheLastLineOfARunGivesTheAccuracyAndTheCoverage) {
+  touchcloud::test::TempDir dir;
+  touchcloud::test::save_pcd(dir / "gt.pcd", cloud_of({{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}));
+  touchcloud::test::save_pcd(dir / "est.pcd", cloud_of({{0, 0, 1}, {10, 0, 2}}));
+  const auto scored = [&](const std::string& metrics) {
+    write_file(dir / "p.yaml", "pipeline: p\nstages:\n  - id: read\n    plugin: cloud_reader\n"
+                               "    params: {path: est.pcd}\n  - id: score\n    plugin: chamfer\n"
+                               "    params: {ground_truth: gt.pcd, metrics: '" + metrics + "'}\n"
+                               "    inputs: {cloud: read.cloud}\n");
+    const auto r = run_cli({"run", (dir / "p.yaml").string(), "--out", (dir / ("out_" + metrics.substr(0, 3))).string()});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const std::string out = r.out.substr(0, r.out.size() - 1);
+    return out.substr(out.rfind('\n') + 1);
+  };
+  EXPECT_EQ(scored("chamfer_est_to_gt, chamfer_gt_to_est, fscore"),
+            "headline: score.chamfer_est_to_gt 1.5 mm; completeness 4.39935 mm, F-score 0.4, coverage 0.333333");
+  EXPECT_EQ(scored("chamfer_est_to_gt"),
+            "headline: score.chamfer_est_to_gt 1.5 mm; coverage not measured (the scoring stage computes no "
+            "completeness, F-score or recall: add them to its metrics)");
 }
 
 TEST(Cli, UsageErrorsAndMissingFilesExitTwo) {

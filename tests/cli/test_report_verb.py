@@ -91,6 +91,16 @@ def test_report_is_self_contained_complete_and_deterministic(run_dir, tmp_path):
     # The surface's mean distance to the ground truth is of the order of the chamfer score.
     assert 0 < clouds["surface"]["distance_mean_mm"] < 3 * curve["series"][-1]
     assert [s["id"] for s in data["stages"]] == [s["id"] for s in summary["stages"]]
+    # The headline: Eq. 11 beside what it hides, found by role, and the
+    # surface the extrapolation mask dropped; the title names the scene.
+    m = summary["metrics"]
+    assert [(h["role"], h["metric"], h["value"]) for h in data["headline"]] == [
+        ("accuracy", "score.chamfer_est_to_gt", m["score.chamfer_est_to_gt"]["value"]),
+        ("completeness", "score.chamfer_gt_to_est", m["score.chamfer_gt_to_est"]["value"]),
+        ("fscore", "score.fscore", m["score.fscore"]["value"]),
+        ("coverage", "score.recall", m["score.recall"]["value"]),
+        ("masked_points", "surface.masked_points", m["surface.masked_points"]["value"])]
+    assert data["run"]["scene"] == "fox_mask" and summary["scene"]["name"] == "fox_mask"
     assert ["touchcloud", summary["versions"]["touchcloud"]] in data["versions"]
     # The same folder gives the same bytes; --out puts them elsewhere.
     again = tmp_path / "again.html"

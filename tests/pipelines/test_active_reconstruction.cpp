@@ -48,7 +48,7 @@ TEST(ActiveReconstruction, FoxMaskImprovesWithEveryFewTouches) {
   EXPECT_EQ(series(r, "sensor.touches")[0], 12);
   EXPECT_EQ(series(r, "sensor.frames_rendered")[0], 0) << "a point-level pipeline renders no image";
   EXPECT_GT(series(r, "dedup.total_points").back(), 300);
-  EXPECT_TRUE(fs::exists(dir / "out/fox_mask_active_surface.pcd"));
+  EXPECT_TRUE(fs::exists(dir / "out/fox_mask_surface.pcd"));
   EXPECT_TRUE(fs::exists(dir / "out/summary.json"));
 }
 
@@ -56,9 +56,9 @@ TEST(ActiveReconstruction, SeededRunsAreIdentical) {
   test::TempDir dir;
   run_active("wave_surface_active.yaml", 6, 3, dir / "a");
   run_active("wave_surface_active.yaml", 6, 3, dir / "b");
-  const std::string a = test::read_file(dir / "a/wave_surface_active_surface.pcd");
+  const std::string a = test::read_file(dir / "a/wave_surface_surface.pcd");
   ASSERT_FALSE(a.empty());
-  EXPECT_EQ(a, test::read_file(dir / "b/wave_surface_active_surface.pcd"));
+  EXPECT_EQ(a, test::read_file(dir / "b/wave_surface_surface.pcd"));
 }
 
 // The footprint-aware strategy with the space-filling start on the fox mask:
@@ -71,9 +71,9 @@ TEST(ActiveReconstruction, FootprintStrategyRunsAreSeededAndReduceTheVariance) {
   const RunResult a = run_active("fox_mask_active.yaml", 8, 5, dir / "a", fvr);
   const RunResult b = run_active("fox_mask_active.yaml", 8, 5, dir / "b", fvr);
   EXPECT_EQ(series(a, "plan.cell"), series(b, "plan.cell"));
-  const std::string surface = test::read_file(dir / "a/fox_mask_active_surface.pcd");
+  const std::string surface = test::read_file(dir / "a/fox_mask_surface.pcd");
   ASSERT_FALSE(surface.empty());
-  EXPECT_EQ(surface, test::read_file(dir / "b/fox_mask_active_surface.pcd"));
+  EXPECT_EQ(surface, test::read_file(dir / "b/fox_mask_surface.pcd"));
   const auto& cells = series(a, "plan.cell");
   EXPECT_EQ(std::set<double>(cells.begin(), cells.end()).size(), cells.size());
   const auto& now = series(a, "plan.mean_variance");

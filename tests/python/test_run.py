@@ -150,10 +150,10 @@ def test_metrics_carry_their_declarations_and_artifacts_their_roles(source, tmp_
     assert r.metrics["dedup.added_points"]["role"] == "points_added"
     roles = {a["role"]: a for a in r.artifacts}
     surface = roles["reconstructed_surface"]
-    assert (surface["stage"], surface["file"]) == ("write_surface", "fox_mask_active_surface.pcd")
-    assert surface["path"] == str(tmp_path / "fox_mask_active_surface.pcd")
+    assert (surface["stage"], surface["file"]) == ("write_surface", "fox_mask_surface.pcd")
+    assert surface["path"] == str(tmp_path / "fox_mask_surface.pcd")
     assert len(touchcloud.read_cloud(surface["path"])) == surface["attributes"]["points"]
-    assert roles["touch_points"]["path"] == str(tmp_path / "fox_mask_active_touch_points.pcd")
+    assert roles["touch_points"]["path"] == str(tmp_path / "fox_mask_touch_points.pcd")
     truth = roles["ground_truth"]
     assert truth["file"] is None and truth["path"] is None
     assert truth["attributes"]["scene"] == str(source / "sample_clouds/fox_mask/scene.yaml")

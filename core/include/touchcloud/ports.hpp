@@ -44,6 +44,10 @@ enum class MetricRole {
   points_added,  // per touch: points the touch added to the reconstruction
   touch_x_mm,    // per touch: where the touch was aimed, base frame
   touch_y_mm,
+  completeness,  // beside accuracy: mean distance from the ground truth to the reconstruction (mm)
+  fscore,        // beside accuracy: F-score of the reconstruction against the ground truth
+  coverage,      // beside accuracy: share of the ground truth the reconstruction comes near (recall)
+  masked_points, // per item: reconstruction points a mask dropped (surface lost, never a better score)
 };
 
 struct MetricSpec {

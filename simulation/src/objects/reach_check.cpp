@@ -21,4 +21,11 @@ double apex_gap_mm(const ObjectSurface& object, const Eigen::Vector2d& target_mm
   return apex - object.height_mm(target_mm);
 }
 
+std::vector<double> apex_gaps_mm(const ObjectSurface& object, const WorkspaceGrid& grid, double radius_mm) {
+  std::vector<double> gaps(static_cast<std::size_t>(grid.cells()));
+  for (int c = 0; c < grid.cells(); ++c)
+    gaps[static_cast<std::size_t>(c)] = apex_gap_mm(object, grid.cell_centre_mm(c), radius_mm);
+  return gaps;
+}
+
 }  // namespace touchcloud::simulation

@@ -110,6 +110,17 @@ TEST_F(Chamfer, DeclaresACloudInAndAScoreOut) {
   EXPECT_EQ(schema.outputs[0].type, "score");
 }
 
+// Beside the accuracy (Eq. 11), what it hides has a role too: the run's
+// headline, the report and sweeps find it by role, never by name.
+TEST_F(Chamfer, CompletenessFscoreAndCoverageAreDeclaredByRole) {
+  std::map<std::string, MetricRole> roles;
+  for (const auto& m : registry_.load("chamfer").schema().metrics) roles[m.name] = m.role;
+  EXPECT_EQ(roles.at("chamfer_est_to_gt"), MetricRole::accuracy);
+  EXPECT_EQ(roles.at("chamfer_gt_to_est"), MetricRole::completeness);
+  EXPECT_EQ(roles.at("fscore"), MetricRole::fscore);
+  EXPECT_EQ(roles.at("recall"), MetricRole::coverage);
+}
+
 TEST_F(Chamfer, BadParametersAreFoundBeforeTheRun) {
   test::write_file(dir_ / "garbage.stl", "not a mesh\n");
   const auto first_error = [&](const std::string& params) {

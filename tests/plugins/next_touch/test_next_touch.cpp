@@ -8,8 +8,12 @@
 #include <set>
 
 #include "pipeline_fixture.hpp"
+#include "sim_fixture.hpp"
+#include "touchcloud/simulation/objects/reach_check.hpp"
+#include "touchcloud/simulation/scene/scene.hpp"
 
 using namespace touchcloud;
+namespace fs = std::filesystem;
 
 class NextTouchStage : public touchcloud::test::PipelineFixture {};
 
@@ -109,4 +113,70 @@ TEST_F(NextTouchStage, TheWorkspaceComesFromTheSceneWhereTheStageDoesNotSetIt) {
   ASSERT_EQ(d.size(), 1u);
   EXPECT_TRUE(touchcloud::test::mentions(d[0], "the workspace needs workspace_y_mm, or a 'scene'")) << d[0].str();
   EXPECT_EQ(d[0].where.line, 4);
+}
+
+// Touches that count: with the run's scene, the cells where the gel cannot
+// reach the ring's table inside its hole are never chosen, every other cell
+// is touched once, and the loop ends early on `plan.done` with a note.
+TEST_F(NextTouchStage, CellsTheGelCannotReachAreNeverChosenAndTheLoopEndsWhenNoneIsLeft) {
+  test::write_file(dir_ / "ring.obj", test::ring_obj());
+  const auto made = test::run_program(test::binary_dir() / "bin" / "touchcloud-make-scene",
+                                      {(dir_ / "ring.obj").string(), "--name", "ring", "--out", dir_.path().string()});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const fs::path scene_file = dir_ / "ring/scene.yaml";
+  const simulation::Scene scene = simulation::load_scene(scene_file);
+  const auto surface = simulation::make_object_surface(scene.object);
+  const WorkspaceGrid& grid = scene.workspace;
+  const std::vector<double> gaps = simulation::apex_gaps_mm(*surface, grid, 32.5);
+  std::set<int> unreachable;
+  for (int c = 0; c < grid.cells(); ++c)
+    if (gaps[static_cast<std::size_t>(c)] > simulation::kDefaultReachToleranceMm) unreachable.insert(c);
+  ASSERT_FALSE(unreachable.empty());
+
+  Pipeline p = load("scene: ring/scene.yaml\nstages:\n  - id: l\n    loop:\n      max_iterations: 500\n"
+                    "      until: plan.done\n      stages:\n        - id: plan\n          plugin: next_touch\n"
+                    "          params: {strategy: random, initial_random: 1}\n");
+  RunOptions o;
+  o.quiet = true;
+  const RunResult r = run_pipeline(p, o);
+  const auto& cells = r.record.metrics.at("plan.cell").values;
+  EXPECT_EQ(cells.size(), static_cast<std::size_t>(grid.cells()) - unreachable.size());
+  std::set<int> chosen;
+  for (const double c : cells) {
+    EXPECT_FALSE(unreachable.count(static_cast<int>(c))) << "unreachable cell " << c << " chosen";
+    chosen.insert(static_cast<int>(c));
+  }
+  EXPECT_EQ(chosen.size(), cells.size()) << "a cell chosen twice";
+  EXPECT_EQ(r.record.metrics.at("plan.unreachable_cells").values.back(), static_cast<double>(unreachable.size()));
+  EXPECT_EQ(r.record.metrics.at("plan.touches_planned").values.back(), static_cast<double>(cells.size()));
+  EXPECT_EQ(r.record.metrics.at("plan.cells_left").values.back(), 0.0);
+  ASSERT_TRUE(r.record.notes.count("plan.unreachable"));
+  ASSERT_TRUE(r.record.notes.count("plan.stopped"));
+  EXPECT_NE(r.record.notes.at("plan.stopped").find("no cell is left"), std::string::npos);
+}
+
+// With revisit, a cell whose touch added no point (the same patch again,
+// de-duplicated to nothing) is not chosen again: the plane's variance keeps
+// the far corner 49 first, so without the rule every touch would go there.
+TEST_F(NextTouchStage, ACellWhoseTouchAddedNoPointIsNotChosenAgain) {
+  Pipeline p = load(
+      "stages:\n  - id: model\n    plugin: test_plane_surface\n    params: {peak_mm: [0, 0]}\n"
+      "  - id: l\n    loop:\n      max_iterations: 5\n      stages:\n"
+      "        - id: plan\n          plugin: next_touch\n"
+      "          params: {workspace_x_mm: [0, 100], workspace_y_mm: [0, 50], grid: [10, 5], initial_random: 1,\n"
+      "                   revisit: true}\n"
+      "          inputs: {surface: model.surface, added: dedup.added@previous}\n"
+      "        - id: patch\n          plugin: test_patch_source\n          params: {centres_mm: [0, 0]}\n"
+      "        - id: dedup\n          plugin: dedup\n          inputs: {cloud: patch.cloud}\n");
+  RunOptions o;
+  o.quiet = true;
+  const RunResult r = run_pipeline(p, o);
+  const auto& cells = r.record.metrics.at("plan.cell").values;
+  ASSERT_EQ(cells.size(), 5u);
+  // Touch 0 (random) adds the patch; touch 1 goes to 49 and adds nothing, so
+  // 49 is closed for touch 2, which takes 39 at (95, 35), then 29 at (95, 25).
+  EXPECT_EQ(cells[1], 49);
+  EXPECT_EQ(cells[2], 39);
+  EXPECT_EQ(cells[3], 29);
+  EXPECT_EQ(r.record.metrics.at("plan.cells_without_gain").values.back(), 3.0);
 }

@@ -76,6 +76,17 @@ class SwingingSurface final : public SurfaceModel {
   std::map<std::string, double> hyperparameters() const override { return {}; }
 };
 
+// The same swing fitted to points with z in [0, 50]: extrapolation only
+// beyond x = 70.
+class WiderSwing final : public SurfaceModel {
+ public:
+  std::size_t training_size() const override { return 3; }
+  Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override { return xy.col(0); }
+  Eigen::VectorXd variance(const Eigen::MatrixX2d& xy) const override { return Eigen::VectorXd::Zero(xy.rows()); }
+  std::optional<std::array<double, 2>> data_z_range_mm() const override { return std::array<double, 2>{0, 50}; }
+  std::map<std::string, double> hyperparameters() const override { return {}; }
+};
+
 std::map<std::string, ParamValue> swing_params(std::map<std::string, ParamValue> more) {
   more["workspace_x_mm"] = std::vector<double>{0, 100};
   more["workspace_y_mm"] = std::vector<double>{0, 10};
@@ -109,6 +120,31 @@ TEST(SurfaceSamplerStage, AMeanFarOutsideTheDataIsMaskedOrAnError) {
   } catch (const RunError& e) {
     EXPECT_NE(std::string(e.what()).find("outside the fitted points' z range [0, 10] mm"), std::string::npos) << e.what();
   }
+}
+
+// What a mask drops is counted as lost surface (a role the run's headline
+// reads), every call, and the run's notes give the last call's counts, not
+// the first warning's: 140 points dropped at the first touch, 60 at the last.
+TEST(SurfaceSamplerStage, MaskedPointsAreCountedAndTheNotesGiveTheLastCounts) {
+  touchcloud::test::StageHarness stage("surface_sampler", swing_params({}));
+  stage.configure();
+  stage.process_one<CloudConstPtr>({{"surface", SurfaceModelPtr(std::make_shared<SwingingSurface>())}}, "cloud");
+  EXPECT_EQ(stage.metric("masked_points"), 2 * 70);
+  const CloudConstPtr last =
+      stage.process_one<CloudConstPtr>({{"surface", SurfaceModelPtr(std::make_shared<WiderSwing>())}}, "cloud");
+  EXPECT_EQ(last->size(), 2u * 71u);
+  EXPECT_EQ(stage.metric("masked_points"), 2 * 30);
+  stage.finish();
+  EXPECT_EQ(stage.metric("lattice_points"), 202);
+  const auto& notes = stage.record().notes;
+  ASSERT_TRUE(notes.count("stage.extrapolation"));
+  EXPECT_NE(notes.at("stage.extrapolation").find("at the last call 60 lattice points"), std::string::npos)
+      << notes.at("stage.extrapolation");
+  ASSERT_TRUE(notes.count("stage.masked"));
+  EXPECT_NE(notes.at("stage.masked").find("60 of 202 lattice points were dropped"), std::string::npos)
+      << notes.at("stage.masked");
+  const auto& declared = stage.record().metrics.at("stage.masked_points").spec;
+  EXPECT_EQ(declared.role, MetricRole::masked_points);
 }
 
 // max_sd_mm drops points where the model is unsure (sd = x / 10 > 2: x > 20).

@@ -105,3 +105,27 @@ TEST(MakeScene, AnOutputFolderUnderAFileIsBadInput) {
       << r.err;
   EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
 }
+
+// --sensor writes the sensor section of each family, which its simulator
+// stage takes; the reach check is for the GelStereo's dome, not a flat pad.
+TEST(MakeScene, EachSensorFamilyGetsItsOwnSensorSection) {
+  test::TempDir dir;
+  test::write_file(dir / "ring.obj", test::ring_obj());
+  const std::vector<std::pair<std::string, std::string>> families = {
+      {"marker_gelstereo", "markers"}, {"colour_gelstereo", "colour_pattern"}, {"gelsight", "gelsight"}};
+  for (const auto& [family, kind] : families) {
+    const auto r = make_scene({(dir / "ring.obj").string(), "--name", family, "--sensor", family, "--out",
+                               (dir / "objects").string()});
+    ASSERT_EQ(r.exit_code, 0) << family << ": " << r.err;
+    const simulation::Scene scene = simulation::load_scene(dir / "objects" / family / "scene.yaml");
+    EXPECT_EQ(scene.family == sensor::SensorFamily::GelSight, family == "gelsight") << family;
+    if (family != "gelsight") {
+      EXPECT_EQ(scene.sensor.pattern == sensor::GelPattern::ColourPattern, family == "colour_gelstereo") << family;
+    }
+    EXPECT_EQ(r.err.find("cannot be reached by the gel") != std::string::npos, family != "gelsight") << r.err;
+  }
+  const auto bad = make_scene({(dir / "ring.obj").string(), "--name", "x", "--sensor", "digit", "--out",
+                               (dir / "bad").string()});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}

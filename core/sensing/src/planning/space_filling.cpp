@@ -45,7 +45,8 @@ Partition lloyd(const Eigen::MatrixX2d& points, Eigen::MatrixX2d centroids) {
 
 }  // namespace
 
-std::vector<int> space_filling_cells(const WorkspaceGrid& grid, int count, std::mt19937_64& rng, int starts) {
+std::vector<int> space_filling_cells(const WorkspaceGrid& grid, int count, std::mt19937_64& rng, int starts,
+                                     const std::set<int>& exclude) {
   check_choice_grid(grid);
   if (count < 1) throw InputError("a space-filling design needs at least one touch, not " + std::to_string(count));
   const int k = std::min(count, grid.cells());
@@ -67,6 +68,8 @@ std::vector<int> space_filling_cells(const WorkspaceGrid& grid, int count, std::
   // Each centroid to its nearest cell not taken yet.
   std::vector<int> design;
   std::vector<bool> taken(static_cast<std::size_t>(grid.cells()), false);
+  for (const int c : exclude)
+    if (c >= 0 && c < grid.cells()) taken[static_cast<std::size_t>(c)] = true;
   for (Eigen::Index g = 0; g < best.centroids.rows(); ++g) {
     int nearest = -1;
     double nearest_d = std::numeric_limits<double>::infinity();
@@ -74,6 +77,7 @@ std::vector<int> space_filling_cells(const WorkspaceGrid& grid, int count, std::
       const double d = (centres.row(c) - best.centroids.row(g)).squaredNorm();
       if (!taken[static_cast<std::size_t>(c)] && d < nearest_d) nearest = c, nearest_d = d;
     }
+    if (nearest < 0) break;  // every cell taken or excluded
     taken[static_cast<std::size_t>(nearest)] = true;
     design.push_back(nearest);
   }

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "touchcloud/simulation/objects/object_surface.hpp"
+#include "touchcloud/types/workspace.hpp"
 
 namespace touchcloud::simulation {
 
@@ -22,5 +23,8 @@ inline constexpr double kDefaultReachToleranceMm = 15.0;
 // surface is sampled every `step_mm` inside the gel's footprint).
 double apex_gap_mm(const ObjectSurface& object, const Eigen::Vector2d& target_mm, double radius_mm,
                    double step_mm = 1.0);
+
+// apex_gap_mm at every cell centre of `grid` (row-major, as its cell indices).
+std::vector<double> apex_gaps_mm(const ObjectSurface& object, const WorkspaceGrid& grid, double radius_mm);
 
 }  // namespace touchcloud::simulation

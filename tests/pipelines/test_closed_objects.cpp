@@ -1,0 +1,68 @@
+// The main job on the shipped closed shapes (sample_clouds/closed_objects),
+// run as a user runs it on their own object: `--scene` only. The headline
+// shows what was missed (the sides and bottom no press from above reaches),
+// the planner touches no cell the gel cannot reach, and on the small sphere
+// it stops once no cell is left instead of spending the rest of the budget.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using touchcloud::test::run_cli;
+
+namespace {
+struct ObjectRun {
+  nlohmann::json summary;
+  std::string headline;
+};
+
+ObjectRun run_on(const std::string& object, const std::vector<std::string>& more, const fs::path& out) {
+  std::vector<std::string> args = {"run", (touchcloud::test::source_dir() / "pipelines/fox_mask_active.yaml").string(),
+                                   "--scene",
+                                   (touchcloud::test::source_dir() / "sample_clouds/closed_objects" / object /
+                                    "scene.yaml").string(),
+                                   "--seed", "1", "--quiet", "--out", out.string()};
+  args.insert(args.end(), more.begin(), more.end());
+  const auto r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  ObjectRun run{nlohmann::json::parse(touchcloud::test::read_file(out / "summary.json")), ""};
+  const std::string text = r.out.substr(0, r.out.find_last_not_of('\n') + 1);
+  run.headline = text.substr(text.rfind('\n') + 1);
+  return run;
+}
+double metric(const ObjectRun& r, const std::string& key) { return r.summary["metrics"][key]["value"].get<double>(); }
+}  // namespace
+
+TEST(ClosedObjects, TheSphereStopsWhenNoCellIsLeftAndItsHeadlineShowsHalfTheObjectMissed) {
+  touchcloud::test::TempDir dir;
+  const ObjectRun r = run_on("sphere", {}, dir / "sphere");
+  // 4 of the 4 x 4 cells lie off the ball, where the gel rests on it far above the table.
+  EXPECT_EQ(metric(r, "plan.unreachable_cells"), 4);
+  EXPECT_EQ(r.summary["loops"]["explore"]["iterations"], 12);
+  EXPECT_EQ(r.summary["loops"]["explore"]["max_iterations"], 34);
+  EXPECT_TRUE(r.summary["notes"].contains("plan.stopped"));
+  // No touch stopped short of the surface: the simulator's own measure.
+  EXPECT_EQ(metric(r, "sensor.unreachable_touches"), 0);
+  for (const auto& gap : r.summary["metrics"]["sensor.apex_above_target_mm"]["series"]) EXPECT_LE(gap.get<double>(), 15.0);
+  // The bottom half of a ball is out of reach: coverage under 0.6, however good Eq. 11 is.
+  EXPECT_LT(metric(r, "score.recall"), 0.6);
+  EXPECT_LT(metric(r, "score.chamfer_est_to_gt"), 1.0);
+  EXPECT_GT(metric(r, "score.chamfer_gt_to_est"), 3.0);
+  EXPECT_EQ(r.headline.rfind("headline: score.chamfer_est_to_gt ", 0), 0u) << r.headline;
+  EXPECT_NE(r.headline.find("coverage 0.4"), std::string::npos) << r.headline;
+  EXPECT_TRUE(fs::exists(dir / "sphere/sphere_surface.pcd"));
+  EXPECT_EQ(r.summary["scene"]["name"], "sphere");
+}
+
+TEST(ClosedObjects, TheTorusHoleIsLeftOutAndTheMaskedSurfaceIsCountedAsLost) {
+  touchcloud::test::TempDir dir;
+  const ObjectRun r = run_on("torus", {"--set", "explore.max_iterations=8"}, dir / "torus");
+  EXPECT_EQ(metric(r, "plan.unreachable_cells"), 56);
+  EXPECT_EQ(metric(r, "sensor.unreachable_touches"), 0);
+  EXPECT_EQ(metric(r, "plan.touches_planned"), 8);
+  EXPECT_LT(metric(r, "score.recall"), 0.6);
+  EXPECT_GT(metric(r, "surface.masked_points"), 0);
+  EXPECT_NE(r.headline.find("(surface lost to a mask)"), std::string::npos) << r.headline;
+}

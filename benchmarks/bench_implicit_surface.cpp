@@ -1,0 +1,90 @@
+// Implicit surface (gpis_surface) speed:
+//   BM_ImplicitTouchUpdate/n  one touch of 21 contact points (33 training
+//                             points with its signed pairs) added to a
+//                             Matern 5/2 model of n training points by a
+//                             bordered update, weights solved (the model's
+//                             copy before each touch is not timed)
+//   BM_ImplicitGridMean/n     the mean on a 32^3 grid from n points (what the
+//                             stage meshes after each touch, at cells: 31)
+//   BM_LevelSetMesh/c         VTK flying edges on a c^3 grid of a sphere's
+//                             signed distance (VTK's SMP backend, TBB on
+//                             Debian, uses the cores the process may: run
+//                             under `taskset -c 0` for one core)
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "touchcloud/gp/implicit_surface.hpp"
+#include "touchcloud/gp/level_set_mesh.hpp"
+
+using namespace touchcloud;
+
+namespace {
+
+// A touch of a sphere of 60 mm along direction i of `count` (Fibonacci lattice).
+gp::ImplicitTouch sphere_touch(int i, int count) {
+  const double z = 1 - (2.0 * i + 1) / count, rho = std::sqrt(1 - z * z), phi = i * std::numbers::pi * (3 - std::sqrt(5.0));
+  const Eigen::Vector3d n(rho * std::cos(phi), rho * std::sin(phi), z);
+  const Eigen::Vector3d a = n.unitOrthogonal(), b = n.cross(a);
+  gp::ImplicitTouch t;
+  t.points_mm.resize(21, 3);
+  t.normals = n.transpose().replicate(21, 1);
+  int row = 0;
+  for (double s = -5; s <= 5; s += 2.5)
+    for (double u = -5; u <= 5; u += 2.5)
+      if (s * s + u * u <= 25 && row < 21) t.points_mm.row(row++) = (60 * (60 * n + s * a + u * b).normalized()).transpose();
+  return t;
+}
+
+gp::ImplicitSurface model_of(Eigen::Index points, int touches_total) {
+  gp::ImplicitSurfaceOptions o;
+  o.kernel = gp::ImplicitKernelKind::matern52;
+  o.reselect_growth = 1e6;  // one selection, on the first touch
+  gp::ImplicitSurface s(o);
+  for (int i = 0; s.training_size() < points; ++i) s.add(sphere_touch(i, touches_total));
+  return s;
+}
+
+void BM_ImplicitTouchUpdate(benchmark::State& state) {
+  const gp::ImplicitSurface base = model_of(state.range(0), 400);
+  const gp::ImplicitTouch touch = sphere_touch(399, 400);
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::optional<gp::ImplicitSurface> s(base);
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(s->add(touch));
+    state.PauseTiming();
+    s.reset();
+    state.ResumeTiming();
+  }
+  state.counters["training_points"] = static_cast<double>(base.training_size());
+}
+BENCHMARK(BM_ImplicitTouchUpdate)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
+
+void BM_ImplicitGridMean(benchmark::State& state) {
+  const gp::ImplicitSurface s = model_of(state.range(0), 400);
+  const gp::SampleGrid grid = gp::grid_around(s.contact_points(), 5.0, 31);
+  const Eigen::MatrixX3d q = grid.sample_points();
+  for (auto _ : state) benchmark::DoNotOptimize(s.mean(q));
+  state.counters["grid_points"] = static_cast<double>(q.rows());
+}
+BENCHMARK(BM_ImplicitGridMean)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+
+void BM_LevelSetMesh(benchmark::State& state) {
+  const int cells = static_cast<int>(state.range(0));
+  Eigen::MatrixX3d corners(2, 3);
+  corners << -40, -40, -40, 40, 40, 40;
+  const gp::SampleGrid grid = gp::grid_around(corners, 5.0, cells - 1);  // `cells` samples a side
+  const Eigen::VectorXd f = grid.sample_points().rowwise().norm().array() - 40.0;
+  std::size_t triangles = 0;
+  for (auto _ : state) triangles = gp::zero_level_set(grid, f).triangles.size();
+  state.counters["samples"] = static_cast<double>(grid.size());
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(BM_LevelSetMesh)->Arg(128)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,125 @@
+// An implicit surface from touches: a GP on the signed distance f(p), p in
+// the base frame (mm), f < 0 inside the object, 0 on its surface, > 0
+// outside. Each touch gives its contact points (f = 0) and, along the
+// outward normal there (the palm's normal), signed points `offset_mm`
+// outside (f = +offset) and inside (f = -offset) at every `offset_stride`-th
+// point. The prior mean is a sphere around the touched points (f = |p - c| -
+// r0, c their centroid and r0 their mean distance from it, fixed at each
+// hyperparameter selection), so the zero level set is closed and far from
+// the data the model says "outside".
+//
+// A touch without normals takes its patch's plane normal, turned away from
+// the centroid of all points touched (right for shapes convex about it);
+// that needs the patch to span a plane and all the points to span space:
+// otherwise the side of the surface is unknown and the touch is refused.
+//
+// Hyperparameters (signal variance, scale, noise) maximise the exact log
+// marginal likelihood (gp's L-BFGS search, maximise_lml) on an evenly
+// strided subset of at most `selection_points` training points; they are
+// selected again once the training set has grown by `reselect_growth` since
+// the last selection, and (thin_plate) whenever a touch reaches beyond the
+// kernel's R. Between selections a touch extends the Cholesky factor (a
+// bordered update), as the height-field GP does.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "touchcloud/gp/hyperparameters.hpp"
+#include "touchcloud/gp/implicit_kernel.hpp"
+#include "touchcloud/gp/jittered_cholesky.hpp"
+
+namespace touchcloud::gp {
+
+struct ImplicitTouch {
+  Eigen::MatrixX3d points_mm;  // on the surface, base frame
+  // Outward unit normal at each point (or none: no rows, see above).
+  Eigen::MatrixX3d normals = Eigen::MatrixX3d(0, 3);
+};
+
+struct ImplicitSurfaceOptions {
+  ImplicitKernelKind kernel = ImplicitKernelKind::thin_plate;
+  double offset_mm = 2.0;
+  int offset_stride = 4;
+  Eigen::Index selection_points = 400;
+  double reselect_growth = 0.5;
+  double max_noise_mm = 0.5;   // noise standard deviation the selection may choose, at most
+  double min_noise_mm = 0.01;  // and at least (keeps repeated touches factorisable)
+  int max_iterations = 40;     // L-BFGS iterations of a selection
+  JitterSchedule jitter;
+  void validate() const;  // InputError naming the field, its value and the rule
+};
+
+enum class ImplicitUpdatePath { selected, bordered, refactorised };
+std::string to_string(ImplicitUpdatePath path);
+
+struct ImplicitUpdate {
+  ImplicitUpdatePath path = ImplicitUpdatePath::selected;
+  Eigen::Index points_added = 0;      // training points (contact and signed)
+  Eigen::Index training_points = 0;   // after the touch
+  std::optional<double> lml;          // at a selection, on its subset
+  Eigen::Index selection_points = 0;  // the subset's size, at a selection
+  double jitter_mm2 = 0;              // added to the diagonal to factorise
+  bool normals_estimated = false;     // the touch came without normals
+};
+
+class ImplicitSurface {
+ public:
+  explicit ImplicitSurface(ImplicitSurfaceOptions options = {});  // InputError on invalid options
+
+  // Adds one touch. InputError (the model unchanged) for a touch without
+  // points, with a value that is not finite, normals that are not unit
+  // length or not one per point, or no normals where the side cannot be told
+  // (see the top). RunError when the covariance cannot be factorised.
+  ImplicitUpdate add(const ImplicitTouch& touch);
+
+  // Signed distance estimate at each row (mm), and its latent variance (mm^2,
+  // finite and >= 0: rounding below 0 is clamped and counted in *clamped,
+  // anything not finite a RunError). InputError before the first touch.
+  // The mean runs on `threads` threads (0: every hardware thread) with the
+  // same result for any count.
+  Eigen::VectorXd mean(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, int threads = 1) const;
+  Eigen::VectorXd variance(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, std::size_t* clamped = nullptr) const;
+
+  Eigen::Index training_size() const { return n_; }
+  const Eigen::MatrixX3d& contact_points() const { return contacts_; }
+  std::size_t touches() const { return touches_; }
+  const Hyperparameters& hyperparameters() const { return h_; }
+  const ImplicitSurfaceOptions& options() const { return options_; }
+  Eigen::Vector3d prior_centre_mm() const { return centre_; }
+  double prior_radius_mm() const { return radius_; }
+
+ private:
+  void append_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals);
+  double prior(const Eigen::Vector3d& p) const { return (p - centre_).norm() - radius_; }
+  void set_prior();
+  // thin_plate: whether R still spans the data (its kernel is a covariance
+  // only up to R); a touch that reaches farther selects again.
+  bool scale_covers_data() const;
+  double diameter_mm() const;  // of the training points' bounding box
+  ImplicitUpdate select();
+  void refactorise();           // L from all training points at h_, with the jitter schedule
+  bool extend_factor(Eigen::Index from);  // bordered update for rows [from, n_); false: not positive
+  void solve_weights();
+  void require_touches() const;
+
+  ImplicitSurfaceOptions options_;
+  Hyperparameters h_;
+  Eigen::MatrixX3d x_;  // training points, rows [0, n_) in use
+  Eigen::VectorXd f_;   // their signed distances
+  Eigen::MatrixX3d contacts_{0, 3};
+  Eigen::Index n_ = 0;
+  std::size_t touches_ = 0;
+  Eigen::Index selected_at_ = 0;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
+  double radius_ = 0;
+  Eigen::MatrixXd factor_;  // lower n_ x n_ corner: L L^T = K + (noise + jitter) I
+  double jitter_mm2_ = 0;
+  Eigen::VectorXd v_;       // L^-1 (f - prior)
+  Eigen::VectorXd alpha_;   // L^-T v
+};
+
+}  // namespace touchcloud::gp

@@ -1,0 +1,33 @@
+// The zero level set of a function sampled on a regular grid, as a triangle
+// mesh, by VTK's flying edges (vtkFlyingEdges3D). Only this part of the gp
+// library links VTK (target touchcloud_gp_level_set).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "touchcloud/scoring/triangle_mesh.hpp"
+
+namespace touchcloud::gp {
+
+// A regular grid: `points` samples per axis from `origin_mm` at `spacing_mm`;
+// samples are laid out x fastest, then y, then z.
+struct SampleGrid {
+  Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();
+  double spacing_mm = 1.0;
+  Eigen::Vector3i points = Eigen::Vector3i::Constant(2);
+  Eigen::Index size() const { return Eigen::Index{points.x()} * points.y() * points.z(); }
+  Eigen::MatrixX3d sample_points() const;
+};
+
+// The bounding box of `points` grown by `margin_mm` on every side, with
+// `cells` cells along its longest side. InputError for no points, a
+// non-positive margin or fewer than 2 cells.
+SampleGrid grid_around(const Eigen::MatrixX3d& points_mm, double margin_mm, int cells);
+
+// The surface where `values` (one per grid sample) cross 0; the triangles
+// share their vertices and face the positive side. A level set that stays
+// inside the grid is closed. InputError for a value count that does not
+// match, or a value that is not finite; an empty mesh when nothing crosses.
+scoring::TriangleMesh zero_level_set(const SampleGrid& grid, const Eigen::VectorXd& values);
+
+}  // namespace touchcloud::gp

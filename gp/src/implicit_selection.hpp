@@ -1,0 +1,21 @@
+// Hyperparameter selection for the implicit surface: the exact log marginal
+// likelihood of residuals r (signed distance minus the prior mean) at points
+// p, with its analytic gradient in (log s2, log scale, log noise), maximised
+// by gp's L-BFGS restarts (maximise_lml) from one start inside bounds that
+// follow the data: the scale between the offset and a few times the data's
+// diameter (thin_plate: at least the diameter, as its kernel asks), the
+// signal variance around the residuals' spread, the noise within the options'.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "touchcloud/gp/hyperparameter_search.hpp"
+#include "touchcloud/gp/implicit_surface.hpp"
+
+namespace touchcloud::gp {
+
+// `diameter_mm`: of all the training points, which the subset may not span.
+SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& points_mm, const Eigen::VectorXd& residual_mm,
+                                             double diameter_mm, const ImplicitSurfaceOptions& options);
+
+}  // namespace touchcloud::gp

@@ -1,0 +1,146 @@
+// gpis_surface: a Gaussian-process implicit surface over every touch so far
+// (touchcloud/gp/implicit_surface.hpp): a GP on the signed distance, zero on
+// the touched points and +-offset_mm along the palm's normal outside and
+// inside them. Each touch updates the model (a bordered Cholesky update
+// between hyperparameter selections); its zero level set on a grid around
+// the touched points is meshed by VTK's flying edges and sampled uniformly
+// by area into the cloud this stage outputs (for the chamfer stage). The
+// last mesh is written as PLY with each vertex's variance.
+//
+// The palm's normal comes from the tactile cloud's sensor pose (its z axis:
+// the palm presses along -z); without the tactile input each touch's normal
+// is its patch's plane normal, turned away from the centroid of all points.
+#include <optional>
+
+#include "touchcloud/gp/implicit_surface.hpp"
+#include "touchcloud/gp/level_set_mesh.hpp"
+#include "touchcloud/io/mesh_file.hpp"
+#include "touchcloud/plugin.hpp"
+#include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/types/point_cloud.hpp"
+#include "touchcloud/types/tactile_cloud.hpp"
+
+namespace touchcloud {
+
+class GpisSurface final : public Stage {
+  gp::ImplicitSurfaceOptions options_;
+  std::int64_t cells_ = 64;
+  double margin_mm_ = 5.0;
+  std::int64_t samples_ = 20000;
+  std::optional<std::string> mesh_path_;
+  std::int64_t threads_ = 0;
+  std::optional<gp::ImplicitSurface> model_;
+  scoring::TriangleMesh mesh_;
+  CloudConstPtr cloud_;
+
+  void declare_parameters(ParameterSet& p) override {
+    p.add("kernel", options_.kernel, gp::ImplicitKernelKind::thin_plate,
+          {{"thin_plate", gp::ImplicitKernelKind::thin_plate},
+           {"matern32", gp::ImplicitKernelKind::matern32},
+           {"matern52", gp::ImplicitKernelKind::matern52}})
+        .doc("covariance of the signed distance: thin-plate (scale: at least the data's diameter) or Matern");
+    p.add("offset_mm", options_.offset_mm, 2.0).unit("mm").above(0.0)
+        .doc("distance of the signed points along the palm's normal, outside (+) and inside (-) the contact");
+    p.add("offset_stride", options_.offset_stride, 4).at_least(1)
+        .doc("every this-many-th contact point of a touch gets a signed pair");
+    p.add("selection_points", options_.selection_points, Eigen::Index{400}).at_least(3).unit("points")
+        .doc("hyperparameters are selected on an even stride of at most this many training points");
+    p.add("reselect_growth", options_.reselect_growth, 0.5).at_least(0.0)
+        .doc("select hyperparameters again once the training points have grown by this fraction (0: every touch)");
+    p.add("max_noise_mm", options_.max_noise_mm, 0.5).unit("mm").above(0.0)
+        .doc("largest noise standard deviation of the signed distance the selection may choose");
+    p.add("min_noise_mm", options_.min_noise_mm, 0.01).unit("mm").above(0.0)
+        .doc("smallest noise standard deviation (keeps repeated touches of one spot factorisable)");
+    p.add("cells", cells_, std::int64_t{64}).at_least(2).unit("cells")
+        .doc("grid cells along the longest side of the box around the touched points, for the level set");
+    p.add("margin_mm", margin_mm_, 5.0).unit("mm").above(0.0)
+        .doc("the grid's box reaches this far beyond the touched points");
+    p.add("samples", samples_, std::int64_t{20000}).at_least(1).unit("points")
+        .doc("points sampled uniformly by area on the mesh, the cloud out");
+    p.add("threads", threads_, std::int64_t{0}).at_least(0).unit("threads")
+        .doc("threads of the mean on the grid (0: one per core); the surface is the same for any count");
+    p.add("mesh", mesh_path_).output_file()
+        .doc("PLY file in the output folder for the last mesh, with each vertex's variance (mm^2); not set: none");
+  }
+  void on_check(RunContext&) override {
+    if (!(options_.min_noise_mm <= options_.max_noise_mm))
+      throw ParameterError("min_noise_mm", "must not exceed max_noise_mm");
+    if (mesh_path_ && std::filesystem::path(*mesh_path_).extension() != ".ply")
+      throw ParameterError("mesh", "'" + *mesh_path_ + "': a mesh is written as .ply");
+  }
+  void on_configure(RunContext&) override { model_.emplace(options_); }
+
+  void declare_ports(PortSet& ports) override {
+    ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
+    ports.optional_input<TactileCloudPtr>("tactile", "the touch's tactile cloud: its sensor pose gives the palm's normal");
+    ports.output<CloudConstPtr>("cloud", "points sampled on the zero level set, base frame, mm");
+    ports.metric("training_points", "points", "contact and signed points the GP is fitted to");
+    ports.metric("update_path", "", "how the model was updated: 1 bordered Cholesky update, 2 refactorised, "
+                 "3 hyperparameters selected");
+    ports.metric("lml", "", "log marginal likelihood on the selection's subset (at each selection)").higher_is_better();
+    ports.metric("scale_mm", "mm", "kernel scale: the thin-plate's R or the Matern lengthscale");
+    ports.metric("signal_variance_mm2", "mm^2", "kernel signal variance");
+    ports.metric("noise_variance_mm2", "mm^2", "noise variance of the signed distance");
+    ports.metric("jitter_mm2", "mm^2", "jitter added to the covariance's diagonal to factorise it");
+    ports.metric("mesh_triangles", "", "triangles of the zero level set");
+    ports.metric("max_vertex_variance_mm2", "mm^2", "largest variance at a vertex of the last mesh").final();
+    ports.metric("mean_vertex_variance_mm2", "mm^2", "mean variance over the last mesh's vertices").final();
+    ports.artifact(ArtifactRole::reconstructed_surface, "the last mesh (PLY) with per-vertex variance, with mesh set");
+  }
+
+  void on_process(StageIO& io, RunContext& ctx) override {
+    const auto& cloud = io.input<CloudConstPtr>("cloud");
+    if (!cloud) throw RunError("no cloud to add");
+    if (cloud->empty()) {  // a touch that added nothing: the surface stays as it was
+      if (!cloud_) throw RunError("no touched points yet: the implicit surface needs a touch with points");
+      io.output("cloud", cloud_);
+      return;
+    }
+    gp::ImplicitTouch touch;
+    touch.points_mm.resize(static_cast<Eigen::Index>(cloud->size()), 3);
+    for (std::size_t i = 0; i < cloud->size(); ++i)
+      touch.points_mm.row(static_cast<Eigen::Index>(i)) << (*cloud)[i].x, (*cloud)[i].y, (*cloud)[i].z;
+    if (const auto* tactile = io.optional_input<TactileCloudPtr>("tactile"); tactile && *tactile) {
+      const Eigen::Vector3d palm_normal = (*tactile)->pose.base_from_sensor.linear().col(2).normalized();
+      touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
+    }
+    const gp::ImplicitUpdate update = model_->add(touch);  // InputError names a touch it refuses
+    static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
+    ctx.metric("update_path", kPath[static_cast<int>(update.path)]);
+    if (update.lml) ctx.metric("lml", *update.lml);
+    ctx.metric("training_points", static_cast<double>(update.training_points), "points");
+    ctx.metric("scale_mm", model_->hyperparameters().lengthscale_mm, "mm");
+    ctx.metric("signal_variance_mm2", model_->hyperparameters().signal_variance_mm2, "mm^2");
+    ctx.metric("noise_variance_mm2", model_->hyperparameters().noise_variance_mm2, "mm^2");
+    ctx.metric("jitter_mm2", update.jitter_mm2, "mm^2");
+
+    const gp::SampleGrid grid = gp::grid_around(model_->contact_points(), margin_mm_, static_cast<int>(cells_));
+    mesh_ = gp::zero_level_set(grid, model_->mean(grid.sample_points(), static_cast<int>(threads_)));
+    if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
+    ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
+    auto out = std::make_shared<PointCloud>();
+    for (const Eigen::Vector3d& p : scoring::sample_surface(mesh_, static_cast<std::size_t>(samples_), ctx.rng()()))
+      out->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
+    cloud_ = out;
+    io.output("cloud", cloud_);
+  }
+
+  void on_finish(RunContext& ctx) override {
+    if (mesh_.triangles.empty()) return;
+    Eigen::MatrixX3d vertices(static_cast<Eigen::Index>(mesh_.vertices.size()), 3);
+    for (std::size_t i = 0; i < mesh_.vertices.size(); ++i) vertices.row(static_cast<Eigen::Index>(i)) = mesh_.vertices[i];
+    const Eigen::VectorXd variance = model_->variance(vertices);
+    ctx.metric("max_vertex_variance_mm2", variance.maxCoeff(), "mm^2");
+    ctx.metric("mean_vertex_variance_mm2", variance.mean(), "mm^2");
+    if (!mesh_path_) return;
+    write_mesh_ply(ctx.output_path(*mesh_path_), mesh_,
+                   {{"variance", std::vector<double>(variance.data(), variance.data() + variance.size())}});
+    ctx.artifact(ArtifactRole::reconstructed_surface, *mesh_path_,
+                 {{"triangles", static_cast<std::int64_t>(mesh_.triangles.size())}});
+  }
+};
+
+}  // namespace touchcloud
+
+TOUCHCLOUD_PLUGIN(touchcloud::GpisSurface, "gpis_surface", reconstruction,
+                  "Fits a Gaussian-process implicit surface (signed distance) to touches from any side and meshes it")

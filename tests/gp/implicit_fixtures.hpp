@@ -1,0 +1,88 @@
+// Touch patches on a sphere and a torus from known poses, as the sensor
+// gives them: the contact points of a palm pressed along -n (base frame, mm)
+// and, for every point, the palm's normal n.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "touchcloud/gp/implicit_surface.hpp"
+
+namespace touchcloud::test {
+
+// Points within `radius_mm` of the contact on a square lattice of `step_mm`:
+// (s, t) offsets along two tangents of n.
+inline std::vector<Eigen::Vector2d> footprint(double radius_mm = 5.0, double step_mm = 2.5) {
+  std::vector<Eigen::Vector2d> st;
+  for (double s = -radius_mm; s <= radius_mm + 1e-9; s += step_mm)
+    for (double t = -radius_mm; t <= radius_mm + 1e-9; t += step_mm)
+      if (s * s + t * t <= radius_mm * radius_mm + 1e-9) st.emplace_back(s, t);
+  return st;
+}
+
+inline gp::ImplicitTouch touch_with_palm_normal(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& n) {
+  gp::ImplicitTouch t;
+  t.points_mm.resize(static_cast<Eigen::Index>(points.size()), 3);
+  t.normals.resize(t.points_mm.rows(), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    t.points_mm.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+    t.normals.row(static_cast<Eigen::Index>(i)) = n.normalized().transpose();
+  }
+  return t;
+}
+
+struct SphereObject {
+  Eigen::Vector3d centre_mm{5, -3, 40};
+  double radius_mm = 20;
+
+  // A touch whose palm approaches along -n (n outward, unit).
+  gp::ImplicitTouch touch(const Eigen::Vector3d& n) const {
+    const Eigen::Vector3d a = n.unitOrthogonal(), b = n.cross(a);
+    std::vector<Eigen::Vector3d> points;
+    for (const Eigen::Vector2d& st : footprint())
+      points.push_back(centre_mm + radius_mm * (radius_mm * n + st[0] * a + st[1] * b).normalized());
+    return touch_with_palm_normal(points, n);
+  }
+  // `count` approach directions spread evenly over the sphere (Fibonacci lattice).
+  std::vector<gp::ImplicitTouch> touches(int count) const {
+    std::vector<gp::ImplicitTouch> out;
+    for (int i = 0; i < count; ++i) {
+      const double z = 1 - (2.0 * i + 1) / count, rho = std::sqrt(1 - z * z);
+      const double phi = i * std::numbers::pi * (3 - std::sqrt(5.0));
+      out.push_back(touch({rho * std::cos(phi), rho * std::sin(phi), z}));
+    }
+    return out;
+  }
+};
+
+struct TorusObject {
+  double major_mm = 25, minor_mm = 8;  // about the z axis, centred at the origin
+
+  Eigen::Vector3d point(double u, double v) const {
+    return {(major_mm + minor_mm * std::cos(v)) * std::cos(u), (major_mm + minor_mm * std::cos(v)) * std::sin(u),
+            minor_mm * std::sin(v)};
+  }
+  Eigen::Vector3d normal(double u, double v) const {
+    return {std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v)};
+  }
+  gp::ImplicitTouch touch(double u, double v) const {
+    std::vector<Eigen::Vector3d> points;
+    for (const Eigen::Vector2d& st : footprint())
+      points.push_back(point(u + st[0] / (major_mm + minor_mm * std::cos(v)), v + st[1] / minor_mm));
+    return touch_with_palm_normal(points, normal(u, v));
+  }
+  // `around` x `across` touches: around the ring, and around the tube
+  // (the inner side of the ring included).
+  std::vector<gp::ImplicitTouch> touches(int around, int across) const {
+    std::vector<gp::ImplicitTouch> out;
+    for (int i = 0; i < around; ++i)
+      for (int j = 0; j < across; ++j)
+        out.push_back(touch(2 * std::numbers::pi * (i + 0.5 * (j % 2)) / around, 2 * std::numbers::pi * j / across));
+    return out;
+  }
+};
+
+}  // namespace touchcloud::test

@@ -1,0 +1,94 @@
+// gpis_surface as a stage: touches of a sphere from known poses (each
+// tactile cloud's pose presses along the palm's -z) go in; the cloud out is
+// sampled on the zero level set and lies on the sphere; the last mesh is
+// written as PLY with each vertex's variance. A first touch without a pose
+// (no side known) and a run without points are refused.
+#include <fstream>
+#include <sstream>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "implicit_fixtures.hpp"
+#include "stage_harness.hpp"
+#include "test_support.hpp"
+#include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/types/point_cloud.hpp"
+#include "touchcloud/types/tactile_cloud.hpp"
+
+using namespace touchcloud;
+
+namespace {
+
+CloudConstPtr cloud_of(const gp::ImplicitTouch& t) {
+  auto c = std::make_shared<PointCloud>();
+  for (Eigen::Index i = 0; i < t.points_mm.rows(); ++i)
+    c->push_back(pcl::PointXYZ(static_cast<float>(t.points_mm(i, 0)), static_cast<float>(t.points_mm(i, 1)),
+                               static_cast<float>(t.points_mm(i, 2))));
+  return c;
+}
+
+// The sensor's pose for a touch along -n: its z axis is n.
+TactileCloudPtr tactile_for(const gp::ImplicitTouch& t) {
+  auto tactile = std::make_shared<TactileCloud>();
+  const Eigen::Vector3d n = t.normals.row(0).transpose();
+  tactile->pose.base_from_sensor.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
+  tactile->pose.base_from_sensor.translation() = t.points_mm.colwise().mean().transpose() + 10 * n;
+  return tactile;
+}
+
+class GpisSurfaceStage : public ::testing::Test {
+ protected:
+  test::TempDir dir_;
+};
+
+}  // namespace
+
+TEST_F(GpisSurfaceStage, CloudOnTheSphereAndMeshWithVariance) {
+  RunSettings settings;
+  settings.staging_dir = dir_.path();
+  settings.quiet = true;
+  test::StageHarness h("gpis_surface", {{"cells", std::int64_t{24}}, {"samples", std::int64_t{2000}},
+                                        {"mesh", std::string("sphere.ply")}, {"reselect_growth", 1.0}},
+                       "fit", settings);
+  h.configure();
+  const test::SphereObject sphere;
+  CloudConstPtr out;
+  for (const auto& t : sphere.touches(40))
+    out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
+  h.finish();
+  ASSERT_EQ(out->size(), 2000u);
+  double worst = 0;
+  for (const auto& p : out->points)
+    worst = std::max(worst, std::abs((p.getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm));
+  EXPECT_LT(worst, 0.5);  // the tolerance of tests/gp/test_level_set_mesh.cpp
+  EXPECT_GE(h.metric("max_vertex_variance_mm2"), h.metric("mean_vertex_variance_mm2"));
+  EXPECT_GE(h.metric("mean_vertex_variance_mm2"), 0.0);
+  EXPECT_GT(h.metric("mesh_triangles"), 1000);
+
+  const scoring::TriangleMesh mesh = scoring::read_triangle_mesh(dir_ / "sphere.ply");
+  EXPECT_EQ(static_cast<double>(mesh.triangles.size()), h.metric("mesh_triangles"));
+  std::ifstream in(dir_ / "sphere.ply", std::ios::binary);
+  std::stringstream header;
+  for (std::string line; std::getline(in, line) && line != "end_header";) header << line << "\n";
+  EXPECT_NE(header.str().find("property float variance"), std::string::npos) << header.str();
+}
+
+TEST_F(GpisSurfaceStage, RefusesTouchesWithoutSide) {
+  test::StageHarness h("gpis_surface", {});
+  h.configure();
+  const auto t = test::SphereObject().touches(1).front();
+  // No pose: a lone patch does not say which side is outside.
+  try {
+    h.process({{"cloud", cloud_of(t)}}, {"cloud"});
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("inside and outside cannot be told apart"), std::string::npos) << e.what();
+  }
+  try {
+    h.process({{"cloud", CloudConstPtr(std::make_shared<PointCloud>())}}, {"cloud"});
+    FAIL() << "accepted";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("no touched points yet"), std::string::npos) << e.what();
+  }
+}

@@ -58,34 +58,28 @@ struct Options {
 
 // The `sensor:`, `robot:` and `effects:` sections of each family, as its
 // shipped fox-mask scene has them (sample_clouds/fox_mask/scene*.yaml).
-const char* kMarkerGelStereo =
-    "sensor:\n"
-    "  gel: {diameter_mm: 65}\n"
-    "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
-    "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"
-    "  cameras:\n"
-    "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"
-    "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"
-    "    baseline_mm: 30\n"
-    "    plate_gap_mm: 45\n"
-    "  fps: 30\n"
-    "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
-    "effects: [contact, refraction]\n";
-const char* kColourGelStereo =
-    "sensor:\n"
-    "  gel: {diameter_mm: 65}\n"
-    "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
+// The GelStereo Palm 2.0's gel, plate, cameras and robot, shared by both
+// GelStereo gels; the colour-pattern gel adds its pattern after the markers.
+#define TC_GELSTEREO_GEL                                                                   \
+  "sensor:\n"                                                                               \
+  "  gel: {diameter_mm: 65}\n"                                                              \
+  "  markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8, diameter_mm: 0.6, seed: 1}\n"
+#define TC_GELSTEREO_OPTICS_ROBOT                                                                                  \
+  "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"              \
+  "  cameras:\n"                                                                                                   \
+  "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"           \
+  "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"                                                    \
+  "    baseline_mm: 30\n"                                                                                          \
+  "    plate_gap_mm: 45\n"                                                                                         \
+  "  fps: 30\n"                                                                                                    \
+  "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
+const char* kMarkerGelStereo = TC_GELSTEREO_GEL TC_GELSTEREO_OPTICS_ROBOT "effects: [contact, refraction]\n";
+const char* kColourGelStereo = TC_GELSTEREO_GEL
     "  pattern: colour_pattern\n"
     "  colour_pattern: {feature_mm: 1.0, opacity: 0.8, seed: 1, vignetting: 0.1, image_size_px: [640, 360]}\n"
-    "  plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}\n"
-    "  cameras:\n"
-    "    left: {width_px: 1280, height_px: 720, fx_px: 651.5, fy_px: 652.0, cx_px: 598.6, cy_px: 377.1,\n"
-    "           distortion: [-0.05, 0.02, 0.0005, -0.0003, 0]}\n"
-    "    baseline_mm: 30\n"
-    "    plate_gap_mm: 45\n"
-    "  fps: 30\n"
-    "robot: {speed_mm_s: 6, approach_speed_mm_s: 30, press_depth_mm: 1.5, safe_clearance_mm: 2, max_contact_depth_mm: 10}\n"
-    "effects: [contact, elastic_spread, refraction, render]\n";
+    TC_GELSTEREO_OPTICS_ROBOT "effects: [contact, elastic_spread, refraction, render]\n";
+#undef TC_GELSTEREO_GEL
+#undef TC_GELSTEREO_OPTICS_ROBOT
 const char* kGelSight =
     "sensor:\n"
     "  family: gelsight\n"

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <vector>
 
 #include <zlib.h>
@@ -54,20 +55,33 @@ HeightMapFileSummary write_height_map_file(const std::filesystem::path& file, co
   HeightMapFileSummary s;
   cv::Mat counts(height_mm.size(), CV_16UC1);
   const double most = 65535 * mm_per_count;
+  const auto counted = [&](int u, int v) { return valid.empty() || valid.at<std::uint8_t>(v, u); };
+  // The highest pixel names the scale that would hold the whole map.
+  double highest = 0;
+  cv::Point at;
+  for (int v = 0; v < height_mm.rows; ++v)
+    for (int u = 0; u < height_mm.cols; ++u)
+      if (counted(u, v) && height_mm.at<float>(v, u) > highest) highest = height_mm.at<float>(v, u), at = {u, v};
+  if (highest > most) {
+    const auto short_number = [](double x) {
+      std::ostringstream out;
+      out << x;  // six significant digits: a message, not a record
+      return out.str();
+    };
+    throw InputError("a height of " + short_number(highest) + " mm at pixel (" + std::to_string(at.x) + ", " +
+                     std::to_string(at.y) + ") does not fit 16 bits at " + short_number(mm_per_count) +
+                     " mm per count (at most " + short_number(most) + " mm): raise mm_per_count to at least " +
+                     short_number(highest / 65535));
+  }
   for (int v = 0; v < height_mm.rows; ++v)
     for (int u = 0; u < height_mm.cols; ++u) {
       const double h = height_mm.at<float>(v, u);
       std::uint16_t c = 0;
-      if (!valid.empty() && !valid.at<std::uint8_t>(v, u)) {
+      if (!counted(u, v)) {
         ++s.invalid;
       } else if (h < 0) {
         ++s.below_zero;
       } else {
-        if (h > most)
-          throw InputError("a height of " + number_text(h) + " mm at pixel (" + std::to_string(u) + ", " +
-                           std::to_string(v) + ") does not fit 16 bits at " + number_text(mm_per_count) +
-                           " mm per count (at most " + number_text(most) + " mm): raise mm_per_count to at least " +
-                           number_text(h / 65535));
         c = static_cast<std::uint16_t>(std::lround(h / mm_per_count));
         s.max_height_mm = std::max(s.max_height_mm, h);
       }

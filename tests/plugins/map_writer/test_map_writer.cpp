@@ -51,9 +51,14 @@ TEST(MapWriter, AHeightMapReadsBackFromItsSixteenBitFileWithItsScale) {
     for (int v = 0; v < 30; ++v)
       for (int u = 0; u < 40; ++u) {
         const double h = map->height_mm.at<float>(v, u), read = counts.at<std::uint16_t>(v, u) * 0.001;
-        if (u == 21 && v == 15) EXPECT_EQ(read, 0);  // invalid
-        else if (h < 0) EXPECT_EQ(read, 0), ++below;
-        else EXPECT_NEAR(read, h, 0.0005 + 1e-9) << name << " at " << u << ", " << v;
+        if (u == 21 && v == 15) {
+          EXPECT_EQ(read, 0);  // invalid
+        } else if (h < 0) {
+          EXPECT_EQ(read, 0);
+          ++below;
+        } else {
+          EXPECT_NEAR(read, h, 0.0005 + 1e-9) << name << " at " << u << ", " << v;
+        }
       }
     if (name == "height.png") EXPECT_EQ(imaging::read_height_scale(dir / name), 0.001);
     const auto& a = writer.record().artifacts;

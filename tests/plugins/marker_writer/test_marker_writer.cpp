@@ -157,8 +157,11 @@ class MarkerWriterPipeline : public touchcloud::test::PipelineFixture {
            "          params: {path: '" + path + "'}\n"
            "          inputs: {markers: detect.markers}\n" + extra;
   }
-  RunResult run(const std::string& yaml) {
+  void write_images() {
     for (int k = 0; k < 3; ++k) cv::imwrite((dir_ / ("gel_" + std::to_string(k) + ".png")).string(), dots_image(k + 1));
+  }
+  RunResult run(const std::string& yaml) {
+    write_images();
     Pipeline p = load(yaml);
     RunOptions o;
     o.quiet = true;
@@ -201,6 +204,7 @@ TEST_F(MarkerWriterPipeline, ARunThatFailsLaterLeavesNoMarkerFile) {
 }
 
 TEST_F(MarkerWriterPipeline, AnUnknownFormatIsRefusedAtValidation) {
+  write_images();  // the reader checks its sequence at validation too
   const auto d = errors(pipeline("markers.txt", 1));
   ASSERT_EQ(d.size(), 1u);
   EXPECT_TRUE(mentions(d[0], "unsupported extension '.txt' (use .csv or .json)")) << d[0].str();

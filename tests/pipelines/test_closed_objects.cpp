@@ -1,8 +1,9 @@
 // The main job on the shipped closed shapes (sample_clouds/closed_objects),
 // run as a user runs it on their own object: `--scene` only. The headline
-// shows what was missed (the sides and bottom no press from above reaches),
-// the planner touches no cell the gel cannot reach, and on the small sphere
-// it stops once no cell is left instead of spending the rest of the budget.
+// shows what was missed (the sides and bottom no press from above reaches)
+// and how much of what such a press can see was covered; the planner touches
+// no cell the gel cannot reach, and on the small sphere it stops once no
+// cell is left instead of spending the rest of the budget.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -52,8 +53,18 @@ TEST(ClosedObjects, TheSphereStopsWhenNoCellIsLeftAndItsHeadlineShowsHalfTheObje
   EXPECT_GT(metric(r, "score.chamfer_gt_to_est"), 3.0);
   EXPECT_EQ(r.headline.rfind("headline: score.chamfer_est_to_gt ", 0), 0u) << r.headline;
   EXPECT_NE(r.headline.find("coverage 0.4"), std::string::npos) << r.headline;
+  // Of what a press from above can see, the run covers most: both shares are in the headline.
+  EXPECT_GT(metric(r, "score.visible_recall"), 0.85);
+  EXPECT_NE(r.headline.find(" (recall), 0.9"), std::string::npos) << r.headline;
+  EXPECT_NE(r.headline.find(" (visible_recall)"), std::string::npos) << r.headline;
   EXPECT_TRUE(fs::exists(dir / "sphere/sphere_surface.pcd"));
   EXPECT_EQ(r.summary["scene"]["name"], "sphere");
+  // The report heads with both coverages.
+  const auto report = run_cli({"report", (dir / "sphere").string(), "--out", (dir / "report.html").string()});
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  const std::string page = touchcloud::test::read_file(dir / "report.html");
+  EXPECT_NE(page.find(R"({"metric":"score.recall","role":"coverage")"), std::string::npos);
+  EXPECT_NE(page.find(R"({"metric":"score.visible_recall","role":"coverage")"), std::string::npos);
 }
 
 TEST(ClosedObjects, TheTorusHoleIsLeftOutAndTheMaskedSurfaceIsCountedAsLost) {
@@ -63,6 +74,7 @@ TEST(ClosedObjects, TheTorusHoleIsLeftOutAndTheMaskedSurfaceIsCountedAsLost) {
   EXPECT_EQ(metric(r, "sensor.unreachable_touches"), 0);
   EXPECT_EQ(metric(r, "plan.touches_planned"), 8);
   EXPECT_LT(metric(r, "score.recall"), 0.6);
+  EXPECT_GT(metric(r, "score.visible_recall"), metric(r, "score.recall"));
   EXPECT_GT(metric(r, "surface.masked_points"), 0);
   EXPECT_NE(r.headline.find("(surface lost to a mask)"), std::string::npos) << r.headline;
 }

@@ -49,15 +49,14 @@ def torus(major_mm=40.0, minor_mm=15.0, around=72, tube=36, sweep=None):
     return verts, faces
 
 
-def sphere(radius_mm=15.0, rings=36, segments=72):
-    verts = [(0.0, 0.0, radius_mm)]
+def lat_long(point, rings, segments):
+    """A closed surface round the origin from point(theta, phi): poles at
+    theta 0 and pi, `rings` bands between them, `segments` around."""
+    verts = [point(0.0, 0.0)]
     for k in range(1, rings):
-        t = math.pi * k / rings
         for s in range(segments):
-            p = 2 * math.pi * s / segments
-            verts.append((radius_mm * math.sin(t) * math.cos(p), radius_mm * math.sin(t) * math.sin(p),
-                          radius_mm * math.cos(t)))
-    verts.append((0.0, 0.0, -radius_mm))
+            verts.append(point(math.pi * k / rings, 2 * math.pi * s / segments))
+    verts.append(point(math.pi, 0.0))
     faces = []
     ring = lambda k, s: 1 + (k - 1) * segments + s % segments
     for s in range(segments):
@@ -70,6 +69,11 @@ def sphere(radius_mm=15.0, rings=36, segments=72):
     for s in range(segments):
         faces.append((ring(rings - 1, s), last, ring(rings - 1, s + 1)))
     return verts, faces
+
+
+def sphere(radius_mm=15.0):
+    return lat_long(lambda t, p: (radius_mm * math.sin(t) * math.cos(p), radius_mm * math.sin(t) * math.sin(p),
+                                  radius_mm * math.cos(t)), rings=36, segments=72)
 
 
 def revolve(profile, segments=72):
@@ -113,33 +117,13 @@ def mug(radius_mm=40.0, height_mm=90.0, wall_mm=4.0, base_mm=6.0):
     return verts, faces
 
 
-def pebble(rings=48, segments=96):
-    """A sphere whose radius varies smoothly with direction, flattened below."""
-    def radius(t, p):
-        return 36.0 * (1 + 0.12 * math.sin(2 * t) * math.cos(3 * p + 0.4) + 0.08 * math.cos(3 * t) +
-                       0.06 * math.sin(p) * math.sin(t) ** 2)
-    verts = []
+def pebble():
+    """A sphere whose radius varies smoothly with direction, stretched and flattened."""
     def point(t, p):
-        r = radius(t, p)
+        r = 36.0 * (1 + 0.12 * math.sin(2 * t) * math.cos(3 * p + 0.4) + 0.08 * math.cos(3 * t) +
+                    0.06 * math.sin(p) * math.sin(t) ** 2)
         return (1.1 * r * math.sin(t) * math.cos(p), 0.8 * r * math.sin(t) * math.sin(p), 0.6 * r * math.cos(t))
-    verts.append(point(0.0, 0.0))
-    for k in range(1, rings):
-        t = math.pi * k / rings
-        for s in range(segments):
-            verts.append(point(t, 2 * math.pi * s / segments))
-    verts.append(point(math.pi, 0.0))
-    faces = []
-    ring = lambda k, s: 1 + (k - 1) * segments + s % segments
-    for s in range(segments):
-        faces.append((0, ring(1, s), ring(1, s + 1)))
-    for k in range(1, rings - 1):
-        for s in range(segments):
-            a, b, c, d = ring(k, s), ring(k + 1, s), ring(k + 1, s + 1), ring(k, s + 1)
-            faces += [(a, b, c), (a, c, d)]
-    last = len(verts) - 1
-    for s in range(segments):
-        faces.append((ring(rings - 1, s), last, ring(rings - 1, s + 1)))
-    return verts, faces
+    return lat_long(point, rings=48, segments=96)
 
 
 def step():

@@ -34,6 +34,16 @@ TriangleMesh cap_over_sheet() {
   return m;
 }
 
+// The 10 mm cube as a ground-truth mesh file.
+scoring::GroundTruthFile cube_file() {
+  scoring::GroundTruthFile file;
+  file.file = "cube.obj";
+  file.kind = scoring::GroundTruthKind::Mesh;
+  file.mesh = closed_cube(10);
+  file.area_mm2 = 600;
+  return file;
+}
+
 }  // namespace
 
 TEST(VisibleFromAbove, OfAClosedCubeOnlyTheTopIsSeen) {
@@ -64,11 +74,7 @@ TEST(VisibleFromAbove, AnOverhangHidesWhatIsUnderIt) {
 }
 
 TEST(VisibleFromAbove, GroundTruthKeepsTheDensityAndCountsWhatItLeftOut) {
-  scoring::GroundTruthFile file;
-  file.file = "cube.obj";
-  file.kind = scoring::GroundTruthKind::Mesh;
-  file.mesh = closed_cube(10);
-  file.area_mm2 = 600;
+  const scoring::GroundTruthFile file = cube_file();
   scoring::GroundTruthOptions options;
   options.mesh_samples = 60000;
   options.visible = scoring::Visibility::from_above;
@@ -88,11 +94,7 @@ TEST(VisibleFromAbove, GroundTruthKeepsTheDensityAndCountsWhatItLeftOut) {
 // all of what a press from above sees: both shares are reported, in the
 // index's order whatever stride the ground truth -> estimate direction takes.
 TEST(VisibleFromAbove, VisibleRecallIsTheCoverageOfWhatAPressFromAboveSees) {
-  scoring::GroundTruthFile file;
-  file.file = "cube.obj";
-  file.kind = scoring::GroundTruthKind::Mesh;
-  file.mesh = closed_cube(10);
-  file.area_mm2 = 600;
+  const scoring::GroundTruthFile file = cube_file();
   scoring::GroundTruthOptions options;
   options.mesh_samples = 60000;
   options.flag_seen_from_above = true;

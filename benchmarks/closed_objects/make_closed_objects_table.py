@@ -3,7 +3,7 @@
 above, reconstructed two ways with the same touch budget and seed: the
 height-field GP of the main job (pipelines/fox_mask_active.yaml, its
 max-variance choice) and the implicit surface (pipelines/closed_object_active.yaml,
-space-filling touches). Each run is scored against the whole closed mesh:
+its variance as a press from above meets it). Each run is scored against the whole closed mesh:
 Eq. 11 (estimate -> object), completeness (object -> estimate), F-score and
 coverage at 1.5 mm, of the whole object and of what a press from above sees
 (visible_recall), Hausdorff.
@@ -23,7 +23,7 @@ import tempfile
 
 SHAPES = ["sphere", "pebble", "step", "torus", "mug"]
 PIPELINES = {"height field (GP, max variance)": "pipelines/fox_mask_active.yaml",
-             "implicit surface (GPIS, space-filling)": "pipelines/closed_object_active.yaml"}
+             "implicit surface (GPIS, max variance)": "pipelines/closed_object_active.yaml"}
 METRICS = [("touches", "loops"), ("chamfer_est_to_gt", "score"), ("chamfer_gt_to_est", "score"),
            ("fscore", "score"), ("recall", "score"), ("visible_recall", "score"), ("hausdorff", "score")]
 

@@ -65,6 +65,8 @@ TEST(GelSightScene, NamesTheFieldValueAndRuleOfEachProblem) {
   EXPECT_NE(stereo.find("'vignetting' applies to sensor.family gelsight only"), std::string::npos) << stereo;
   EXPECT_NE(problem("", "[contact, {exposure_drift: {gain: 0}}]").find("effects.exposure_drift.gain"),
             std::string::npos);
+  EXPECT_NE(problem("", "[contact, {exposure_drift: {offset_grey: -300}}]").find("effects.exposure_drift.offset_grey"),
+            std::string::npos);
   // A GelStereo field is unknown to the GelSight section.
   EXPECT_NE(problem("  gel: {diameter_mm: 65}\n").find("sensor.gel"), std::string::npos);
 }

@@ -203,7 +203,7 @@ class CameraSource final : public Stage {
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
-    tally_.call_started(camera::Clock::now());
+    tally_.call_started(camera::Clock::now(), ctx);
     std::optional<camera::Shot> shot = feed_->next(queue_.frame_timeout_s);
     if (!shot)
       throw InputError(source() + " has no frame left after " + std::to_string(tally_.processed()) +

@@ -204,7 +204,7 @@ class StereoCameraSource final : public Stage {
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
-    tally_.call_started(camera::Clock::now());
+    tally_.call_started(camera::Clock::now(), ctx);
     std::optional<camera::ShotPair> pair = pending_ ? std::exchange(pending_, std::nullopt) : next_pair(ctx);
     if (!pair)
       throw InputError(describe() + " has no pair left after " + std::to_string(tally_.processed()) +

@@ -13,6 +13,9 @@ void SequenceGaps::see(std::int64_t sequence) {
 void FrameTally::declare_metrics(PortSet& ports, const std::string& item, const std::string& captured_doc) {
   ports.metric("frames_dropped", "frames",
                "frames lost so far: gaps in the sequence of frames processed (touchcloud stream shows it live)");
+  ports.metric("latency_ms", "ms",
+               "the " + item + " before's time from capture to the chain's end, live (touchcloud stream --view shows it)")
+      .lower_is_better();
   ports.metric("frames_captured", "frames", captured_doc).final();
   ports.metric("frames_processed", "frames", item + "s handed to the chain").final();
   for (const char* p : {"p50", "p95", "p99"})
@@ -23,11 +26,13 @@ void FrameTally::declare_metrics(PortSet& ports, const std::string& item, const 
   ports.metric("rate_fps", "frames/s", item + "s processed per second, first to last").final().higher_is_better();
 }
 
-void FrameTally::call_started(Clock::time_point now) {
-  if (previous_captured_at_)
+void FrameTally::call_started(Clock::time_point now, RunContext& ctx) {
+  if (previous_captured_at_) {
     latency_ms_.push_back(std::chrono::duration<double, std::milli>(now - *previous_captured_at_).count());
-  else
+    ctx.metric("latency_ms", latency_ms_.back(), "ms");
+  } else {
     first_at_ = now;
+  }
 }
 
 void FrameTally::handed_on(Clock::time_point captured_at) {

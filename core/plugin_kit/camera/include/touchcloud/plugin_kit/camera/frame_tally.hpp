@@ -31,12 +31,14 @@ class SequenceGaps {
 
 class FrameTally {
  public:
-  // frames_dropped, frames_captured, frames_processed, latency_p50/p95/p99_ms
-  // and rate_fps; `item` names what is handed on ("frame", "pair").
+  // frames_dropped, latency_ms (live), frames_captured, frames_processed,
+  // latency_p50/p95/p99_ms and rate_fps; `item` names what is handed on
+  // ("frame", "pair").
   static void declare_metrics(PortSet& ports, const std::string& item, const std::string& captured_doc);
 
-  // At the start of each call: the item handed on before has been through the chain.
-  void call_started(Clock::time_point now);
+  // At the start of each call: the item handed on before has been through
+  // the chain (its latency_ms reported).
+  void call_started(Clock::time_point now, RunContext& ctx);
   // An item handed to the chain, captured at `captured_at`.
   void handed_on(Clock::time_point captured_at);
   std::int64_t processed() const { return processed_; }

@@ -10,7 +10,13 @@
 // The palm's normal comes from the tactile cloud's sensor pose (its z axis:
 // the palm presses along -z); without the tactile input each touch's normal
 // is its patch's plane normal, turned away from the centroid of all points.
+//
+// The `surface` output is the model as a press from above meets it
+// (top_surface.hpp), for next_touch to choose where it is least certain.
+#include <memory>
 #include <optional>
+
+#include "top_surface.hpp"
 
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
@@ -29,9 +35,10 @@ class GpisSurface final : public Stage {
   std::int64_t samples_ = 20000;
   std::optional<std::string> mesh_path_;
   std::int64_t threads_ = 0;
-  std::optional<gp::ImplicitSurface> model_;
+  std::shared_ptr<gp::ImplicitSurface> model_;  // shared with the `surface` output until the next touch
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
+  SurfaceModelPtr surface_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("kernel", options_.kernel, gp::ImplicitKernelKind::thin_plate,
@@ -68,12 +75,14 @@ class GpisSurface final : public Stage {
     if (mesh_path_ && std::filesystem::path(*mesh_path_).extension() != ".ply")
       throw ParameterError("mesh", "'" + *mesh_path_ + "': a mesh is written as .ply");
   }
-  void on_configure(RunContext&) override { model_.emplace(options_); }
+  void on_configure(RunContext&) override { model_ = std::make_shared<gp::ImplicitSurface>(options_); }
 
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.optional_input<TactileCloudPtr>("tactile", "the touch's tactile cloud: its sensor pose gives the palm's normal");
     ports.output<CloudConstPtr>("cloud", "points sampled on the zero level set, base frame, mm");
+    ports.output<SurfaceModelPtr>("surface", "the implicit surface as a press from above meets it: its highest "
+                                             "zero crossing over each (x, y) and the variance there, for next_touch");
     ports.metric("training_points", "points", "contact and signed points the GP is fitted to");
     ports.metric("update_path", "", "how the model was updated: 1 bordered Cholesky update, 2 refactorised, "
                  "3 hyperparameters selected");
@@ -94,6 +103,7 @@ class GpisSurface final : public Stage {
     if (cloud->empty()) {  // a touch that added nothing: the surface stays as it was
       if (!cloud_) throw RunError("no touched points yet: the implicit surface needs a touch with points");
       io.output("cloud", cloud_);
+      if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
       return;
     }
     gp::ImplicitTouch touch;
@@ -104,6 +114,10 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = (*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
+    // A model handed out as `surface` does not change: the next touch goes to
+    // a copy while another stage still holds it.
+    surface_.reset();
+    if (model_.use_count() > 1) model_ = std::make_shared<gp::ImplicitSurface>(*model_);
     const gp::ImplicitUpdate update = model_->add(touch);  // InputError names a touch it refuses
     static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
     ctx.metric("update_path", kPath[static_cast<int>(update.path)]);
@@ -123,6 +137,12 @@ class GpisSurface final : public Stage {
       out->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
     cloud_ = out;
     io.output("cloud", cloud_);
+    if (io.wants("surface")) {
+      // Down from the top of the meshed box, in 1 mm steps (then bisected).
+      const double top_z_mm = model_->contact_points().col(2).maxCoeff() + margin_mm_;
+      surface_ = std::make_shared<ImplicitTopSurface>(model_, top_z_mm, 1.0);
+    }
+    if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
   }
 
   void on_finish(RunContext& ctx) override {

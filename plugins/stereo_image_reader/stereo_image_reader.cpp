@@ -11,8 +11,11 @@ namespace touchcloud {
 
 namespace {
 
+// A colour-pattern sensor's pattern is its colours: a grey or 16-bit file is
+// refused there rather than turned into three equal channels.
 cv::Mat read_image(const std::string& file, const char* side, bool colour) {
-  return read_image_file(file, colour ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE, std::string("the ") + side + " image " + file);
+  const std::string name = std::string("the ") + side + " image " + file;
+  return colour ? read_colour_image_file(file, name) : read_image_file(file, cv::IMREAD_GRAYSCALE, name);
 }
 
 std::string size_text(const cv::Mat& image) {
@@ -36,7 +39,7 @@ class StereoImageReader final : public Stage {
         .doc("right image file, the same size as the left; '{iteration}' as for left");
     p.add("fps", fps_, 30.0).unit("frames/s").above(0).doc("frame rate: frame k gets timestamp k / fps");
     p.add("colour", colour_, false)
-        .doc("read the images as 8-bit BGR (the colour-pattern GelStereo; grey files become three equal channels); "
+        .doc("read the images as 8-bit BGR (the colour-pattern GelStereo; a grey or 16-bit file is refused); "
              "false: 8-bit grey (the marker sensor)");
   }
   void declare_ports(PortSet& ports) override {

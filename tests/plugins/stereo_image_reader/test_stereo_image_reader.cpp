@@ -119,6 +119,23 @@ TEST_F(StereoImageReader, ColourReadsBgrAndGreyStaysTheDefault) {
   EXPECT_EQ(frame->right.at<cv::Vec3b>(40, 60), cv::Vec3b(10, 20, 200));
 }
 
+// A colour-pattern pair saved as grey (or as 16-bit) has lost its pattern:
+// refused naming the file, not turned into three equal channels.
+TEST_F(StereoImageReader, AGreyOr16BitFileIsRefusedWhereColourIsNeeded) {
+  save("left.png", cv::Mat(80, 120, CV_8UC3, cv::Scalar(10, 20, 200)));
+  save("grey.png", dots_image(3));
+  save("deep.png", cv::Mat(80, 120, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
+  for (const char* right : {"grey.png", "deep.png"}) {
+    const auto d = errors("stages:\n  - id: read\n    plugin: stereo_image_reader\n"
+                          "    params: {left: left.png, right: " + std::string(right) + ", colour: true}\n");
+    ASSERT_EQ(d.size(), 1u) << right;
+    EXPECT_TRUE(mentions(d[0], "the right image " + (dir_ / right).string())) << d[0].str();
+    EXPECT_TRUE(mentions(d[0], std::string(right) == "grey.png" ? "is a grey image; a colour (BGR) image is needed"
+                                                                 : "16-bit samples"))
+        << d[0].str();
+  }
+}
+
 // OpenCV decodes a JPEG cut short with its missing part grey (and libjpeg
 // prints "Premature end of JPEG file"): refused, naming the file.
 TEST_F(StereoImageReader, AJpegCutShortIsRefusedNamingTheFile) {

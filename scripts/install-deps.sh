@@ -15,6 +15,7 @@ packages=(
   libjpeg-dev zlib1g-dev
   libtorch-dev
   chromium
+  libcpp-httplib-dev python3-opencv
   mkdocs doxygen
 )
 # The report's JavaScript comes through npm: Debian's package, unless an npm

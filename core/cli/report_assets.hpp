@@ -14,5 +14,7 @@ std::string_view uplot_css();         // uplot/dist/uPlot.min.css (MIT)
 std::string_view page_html();         // report/page.html
 std::string_view page_js();           // report/page.js
 std::string_view page_css();          // report/page.css
+std::string_view live_html();         // report/live.html (touchcloud stream --view)
+std::string_view live_js();           // report/live.js
 
 }  // namespace touchcloud::cli::report_assets

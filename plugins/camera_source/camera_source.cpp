@@ -4,16 +4,14 @@
 // into a bounded queue; the no-contact reference is the mean of the first
 // frames (or an image file), and `done` turns true on a recording's last
 // frame, so a loop `until: cam.done` walks a whole file.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "camera_preset.hpp"
-#include "frame_feed.hpp"
-#include "recording.hpp"
+#include "touchcloud/plugin_kit/camera/camera_preset.hpp"
+#include "touchcloud/plugin_kit/camera/frame_feed.hpp"
+#include "touchcloud/plugin_kit/camera/frame_tally.hpp"
+#include "touchcloud/plugin_kit/camera/queue_parameters.hpp"
+#include "touchcloud/plugin_kit/camera/recording.hpp"
 #include "touchcloud/io/image_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/camera_image.hpp"
@@ -24,7 +22,6 @@ namespace touchcloud {
 
 using camera::SourceKind;
 using camera::WhenBehind;
-using Clock = std::chrono::steady_clock;
 
 class CameraSource final : public Stage {
   std::optional<std::string> video_, frames_, device_, preset_, reference_file_, record_;
@@ -33,11 +30,8 @@ class CameraSource final : public Stage {
   std::optional<std::array<int, 4>> crop_;
   std::optional<double> fps_;
   std::optional<std::string> pixel_format_;
-  int warmup_frames_ = 0, reference_frames_ = 1, queue_frames_ = 4;
-  enum class Policy { by_source, block, drop_oldest };
-  Policy when_behind_ = Policy::by_source;
-  bool realtime_ = false;
-  double frame_timeout_s_ = 5;
+  int warmup_frames_ = 0, reference_frames_ = 1;
+  camera::QueueParameters queue_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("video", video_).input_file().doc("a video file (any codec OpenCV's FFmpeg decodes)");
@@ -65,15 +59,7 @@ class CameraSource final : public Stage {
              "'reference' names a file)");
     p.add("reference", reference_file_).input_file()
         .doc("the no-contact reference as an image file instead (with reference_frames: 0)");
-    p.add("queue_frames", queue_frames_, 4).range(1, 10000).unit("frames")
-        .doc("frames captured ahead of processing");
-    p.add("when_behind", when_behind_, Policy::by_source,
-          {{"by_source", Policy::by_source}, {"block", Policy::block}, {"drop_oldest", Policy::drop_oldest}})
-        .doc("a full queue holds capture back (block: every frame processed) or loses its oldest frame (drop_oldest, "
-             "counted); by_source: block for files, drop_oldest for a device");
-    p.add("realtime", realtime_, false).doc("deliver a recording's frames at the pace of their timestamps, as a camera");
-    p.add("frame_timeout_s", frame_timeout_s_, 5.0).above(0).unit("s")
-        .doc("longest wait for a camera to open or deliver a frame");
+    queue_.declare(p);
     p.add("record", record_)
         .doc("a folder to record every frame captured into (index.csv, frames/K.png; relative to the current "
              "directory), written as frames arrive and kept whatever ends the run; frames: FOLDER/index.csv replays it");
@@ -101,16 +87,7 @@ class CameraSource final : public Stage {
     ports.output<CameraImagePtr>("reference_image", "the no-contact reference, 8-bit grey");
     ports.output<FrameStamp>("stamp", "the frame's sequence number and capture time");
     ports.output<bool>("done", "true on a recording's last frame (never for a device)");
-    ports.metric("frames_dropped", "frames",
-                 "frames lost so far: gaps in the sequence of frames processed (touchcloud stream shows it live)");
-    ports.metric("frames_captured", "frames", "frames delivered by the camera after warm-up and reference").final();
-    ports.metric("frames_processed", "frames", "frames handed to the chain").final();
-    for (const char* p : {"p50", "p95", "p99"})
-      ports.metric(std::string("latency_") + p + "_ms", "ms",
-                   std::string(p) + " of the time from capture to the chain's end for the frame (the next call)")
-          .final()
-          .lower_is_better();
-    ports.metric("rate_fps", "frames/s", "frames processed per second, first frame to last").final().higher_is_better();
+    camera::FrameTally::declare_metrics(ports, "frame", "frames delivered by the camera after warm-up and reference");
   }
 
   camera::CaptureSettings settings_;
@@ -118,11 +95,8 @@ class CameraSource final : public Stage {
   std::unique_ptr<camera::FrameFeed> feed_;
   MonoColourFramePtr reference_;
   CameraImagePtr reference_grey_;
-  std::optional<camera::Shot> previous_;
-  std::vector<double> latency_ms_;
-  std::optional<std::int64_t> last_sequence_;
-  std::int64_t processed_ = 0, dropped_ = 0;
-  Clock::time_point first_at_;
+  camera::FrameTally tally_;
+  camera::SequenceGaps gaps_;
 
   std::string source() const { return video_ ? *video_ : frames_ ? *frames_ : device_.value_or(""); }
   SourceKind kind() const {
@@ -137,7 +111,7 @@ class CameraSource final : public Stage {
     s.kind = kind();
     s.source = source();
     s.size = size_, s.fps = fps_, s.pixel_format = pixel_format_, s.crop = crop_, s.resize = resize_;
-    s.open_timeout_s = frame_timeout_s_;
+    s.open_timeout_s = queue_.frame_timeout_s;
     if (!preset_) return s;
     const camera::CameraPreset preset = camera::read_camera_preset(*preset_);
     const auto take = [&](auto& value, const auto& from_preset, const char* name) {
@@ -167,15 +141,7 @@ class CameraSource final : public Stage {
       throw ParameterError("preset", e.what());
     }
     try {
-      if (s.kind == SourceKind::gstreamer) return;
-      if (s.kind == SourceKind::device) {
-        const std::string path = camera::device_path(s.source);
-        if (!std::filesystem::exists(path)) throw InputError("the camera " + path + " does not exist (no such device)");
-        return;
-      }
-      if (s.pixel_format) throw InputError("pixel_format is asked of a device, not of " + s.source);
-      camera::Capture capture(s);
-      if (!capture.next()) throw InputError(s.source + " holds no frame");
+      if (!camera::first_frame(s)) return;
     } catch (const InputError& e) {
       throw ParameterError(source_parameter(), e.what());
     }
@@ -192,10 +158,7 @@ class CameraSource final : public Stage {
 
   void on_configure(RunContext& ctx) override {
     settings_ = capture_settings(&ctx);
-    const WhenBehind policy = when_behind_ == Policy::block         ? WhenBehind::block
-                              : when_behind_ == Policy::drop_oldest ? WhenBehind::drop_oldest
-                              : finite()                            ? WhenBehind::block
-                                                                    : WhenBehind::drop_oldest;
+    const WhenBehind policy = queue_.policy(finite());
     ctx.used("queue_policy", std::string(policy == WhenBehind::block ? "block" : "drop_oldest"));
     std::function<void(const camera::Shot&)> record;
     if (record_) {
@@ -204,19 +167,20 @@ class CameraSource final : public Stage {
       ctx.log("recording every frame into " + *record_);
     }
     feed_ = std::make_unique<camera::FrameFeed>(std::make_unique<camera::Capture>(settings_),
-                                                static_cast<std::size_t>(queue_frames_), policy, realtime_, record);
+                                                static_cast<std::size_t>(queue_.queue_frames), policy, queue_.realtime,
+                                                record);
     for (int i = 0; i < warmup_frames_; ++i) {
-      std::optional<camera::Shot> shot = feed_->next(frame_timeout_s_);
+      std::optional<camera::Shot> shot = feed_->next(queue_.frame_timeout_s);
       if (!shot) throw InputError(source() + " ends within its warm-up frames");
-      last_sequence_ = shot->stamp.sequence;
+      gaps_.see(shot->stamp.sequence);
     }
     cv::Mat reference;
     if (reference_frames_ > 0) {
       cv::Mat sum;
       for (int i = 0; i < reference_frames_; ++i) {
-        std::optional<camera::Shot> shot = feed_->next(frame_timeout_s_);
+        std::optional<camera::Shot> shot = feed_->next(queue_.frame_timeout_s);
         if (!shot) throw InputError(source() + " ends within its reference frames");
-        last_sequence_ = shot->stamp.sequence;
+        gaps_.see(shot->stamp.sequence);
         if (sum.empty()) sum = cv::Mat::zeros(shot->image.size(), CV_64FC3);
         cv::accumulate(shot->image, sum);
       }
@@ -239,17 +203,14 @@ class CameraSource final : public Stage {
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
-    const Clock::time_point now = Clock::now();
-    if (previous_) latency_ms_.push_back(std::chrono::duration<double, std::milli>(now - previous_->captured_at).count());
-    else first_at_ = now;
-    std::optional<camera::Shot> shot = feed_->next(frame_timeout_s_);
+    tally_.call_started(camera::Clock::now(), ctx);
+    std::optional<camera::Shot> shot = feed_->next(queue_.frame_timeout_s);
     if (!shot)
-      throw InputError(source() + " has no frame left after " + std::to_string(processed_) +
+      throw InputError(source() + " has no frame left after " + std::to_string(tally_.processed()) +
                        " processed (end the loop with until: <this stage>.done)");
-    if (last_sequence_ && shot->stamp.sequence > *last_sequence_ + 1) dropped_ += shot->stamp.sequence - *last_sequence_ - 1;
-    last_sequence_ = shot->stamp.sequence;
-    ++processed_;
-    ctx.metric("frames_dropped", static_cast<double>(dropped_), "frames");
+    gaps_.see(shot->stamp.sequence);
+    tally_.handed_on(shot->captured_at);
+    ctx.metric("frames_dropped", static_cast<double>(gaps_.dropped()), "frames");
 
     auto frame = std::make_shared<MonoColourFrame>();
     frame->image = shot->image, frame->sensor = sensor_;
@@ -259,25 +220,11 @@ class CameraSource final : public Stage {
     io.output("reference", reference_);
     io.output("reference_image", reference_grey_);
     io.output("stamp", shot->stamp);
-    if (io.wants("done")) io.output("done", finite() && feed_->ended(frame_timeout_s_));
-    previous_ = std::move(shot);
+    if (io.wants("done")) io.output("done", finite() && feed_->ended(queue_.frame_timeout_s));
   }
 
   void on_finish(RunContext& ctx) override {
-    const Clock::time_point now = Clock::now();
-    if (previous_) latency_ms_.push_back(std::chrono::duration<double, std::milli>(now - previous_->captured_at).count());
-    ctx.metric("frames_captured", static_cast<double>(feed_->captured() - warmup_frames_ - reference_frames_), "frames");
-    ctx.metric("frames_processed", static_cast<double>(processed_), "frames");
-    std::vector<double> sorted = latency_ms_;
-    std::sort(sorted.begin(), sorted.end());
-    for (auto [name, q] : {std::pair{"p50", 0.50}, {"p95", 0.95}, {"p99", 0.99}}) {
-      // Nearest rank: a value that was measured.
-      const double v = sorted.empty() ? 0.0
-                                      : sorted[static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size()))) - 1];
-      ctx.metric(std::string("latency_") + name + "_ms", v, "ms");
-    }
-    const double span_s = std::chrono::duration<double>(now - first_at_).count();
-    ctx.metric("rate_fps", processed_ > 0 && span_s > 0 ? static_cast<double>(processed_) / span_s : 0.0, "frames/s");
+    tally_.finish(ctx, feed_->captured() - warmup_frames_ - reference_frames_);
     feed_.reset();
   }
 };

@@ -1,4 +1,4 @@
-#include "camera_preset.hpp"
+#include "touchcloud/plugin_kit/camera/camera_preset.hpp"
 
 #include <yaml-cpp/yaml.h>
 

@@ -12,7 +12,7 @@
 #include <mutex>
 #include <thread>
 
-#include "capture.hpp"
+#include "touchcloud/plugin_kit/camera/capture.hpp"
 
 namespace touchcloud::camera {
 
@@ -37,6 +37,8 @@ class FrameFeed {
   bool ended(double timeout_s);
   std::int64_t captured() const;
   std::int64_t dropped() const;  // lost from a full queue
+  SourceKind source_kind() const { return capture_->kind(); }
+  const std::string& source() const { return capture_->settings().source; }
 
  private:
   void capture_loop();

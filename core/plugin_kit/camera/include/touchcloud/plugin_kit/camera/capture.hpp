@@ -42,6 +42,10 @@ struct CaptureSettings {
 struct Shot {
   cv::Mat image;  // BGR, 8-bit, after crop and resize
   FrameStamp stamp;
+  // The source's own clock at capture, s: a V4L2 device's buffer time (the
+  // monotonic clock every device on the machine shares), a video's frame
+  // time, a recording's timestamp_s as written. Two cameras pair on it.
+  double clock_s = 0;
   std::chrono::steady_clock::time_point captured_at;
 };
 
@@ -53,6 +57,13 @@ struct FrameFiles {
   std::vector<double> timestamps_s;  // empty: k / fps
 };
 FrameFiles list_frame_files(const std::string& source);
+
+// What `validate` can know of a source before the run: a recording is
+// opened and its first frame read (returned), so that a file that is not a
+// video, a size other than asked or a crop that does not fit is reported; a
+// device is checked to exist (nothing returned), a GStreamer pipeline not at
+// all. InputError naming the source.
+std::optional<cv::Mat> first_frame(const CaptureSettings& settings);
 
 class Capture {
  public:

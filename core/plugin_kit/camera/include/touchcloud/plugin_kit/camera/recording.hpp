@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "capture.hpp"
+#include "touchcloud/plugin_kit/camera/capture.hpp"
 
 namespace touchcloud::camera {
 

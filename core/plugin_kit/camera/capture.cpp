@@ -1,4 +1,4 @@
-#include "capture.hpp"
+#include "touchcloud/plugin_kit/camera/capture.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -95,6 +95,20 @@ FrameFiles list_frame_files(const std::string& source) {
   return out;
 }
 
+std::optional<cv::Mat> first_frame(const CaptureSettings& s) {
+  if (s.kind == SourceKind::gstreamer) return std::nullopt;
+  if (s.kind == SourceKind::device) {
+    const std::string path = device_path(s.source);
+    if (!fs::exists(path)) throw InputError("the camera " + path + " does not exist (no such device)");
+    return std::nullopt;
+  }
+  if (s.pixel_format) throw InputError("pixel_format is asked of a device, not of " + s.source);
+  Capture capture(s);
+  std::optional<Shot> shot = capture.next();
+  if (!shot) throw InputError(s.source + " holds no frame");
+  return shot->image;
+}
+
 Capture::Capture(CaptureSettings settings) : settings_(std::move(settings)), kind_(settings_.kind) {
   const std::string& source = settings_.source;
   const std::vector<int> timeouts = {cv::CAP_PROP_OPEN_TIMEOUT_MSEC, static_cast<int>(settings_.open_timeout_s * 1000),
@@ -174,9 +188,9 @@ std::optional<Shot> Capture::next() {
     shot.image = shape(read_image_file(file, cv::IMREAD_UNCHANGED), "the image " + file.string());
     shot.captured_at = std::chrono::steady_clock::now();
     const double fps = settings_.fps.value_or(30.0);
-    shot.stamp.timestamp_s = files_.timestamps_s.empty()
-                                 ? static_cast<double>(read_) / fps
-                                 : files_.timestamps_s[static_cast<std::size_t>(read_)] - files_.timestamps_s.front();
+    shot.clock_s = files_.timestamps_s.empty() ? static_cast<double>(read_) / fps
+                                               : files_.timestamps_s[static_cast<std::size_t>(read_)];
+    shot.stamp.timestamp_s = shot.clock_s - (files_.timestamps_s.empty() ? 0.0 : files_.timestamps_s.front());
     shot.stamp.sequence = read_++;
     return shot;
   }
@@ -204,6 +218,7 @@ std::optional<Shot> Capture::next() {
   last_ms_ = ms;
   shot.stamp.sequence = sequence_;
   shot.stamp.timestamp_s = (ms - *first_ms_) / 1000.0;
+  shot.clock_s = ms / 1000.0;
   ++read_;
   return shot;
 }

@@ -1,4 +1,4 @@
-#include "frame_feed.hpp"
+#include "touchcloud/plugin_kit/camera/frame_feed.hpp"
 
 #include <chrono>
 

@@ -1,4 +1,4 @@
-#include "recording.hpp"
+#include "touchcloud/plugin_kit/camera/recording.hpp"
 
 #include <cstdio>
 

@@ -23,7 +23,25 @@ GelSightSimulation::GelSightSimulation(Scene scene, std::uint64_t noise_seed,
   const Scene& s = this->scene();
   if (s.effects.has(Effect::Render) && s.effects.has(Effect::PixelNoise) && s.effect_parameters.noise_sigma_grey > 0)
     image_noise_ = std::make_unique<ImageNoise>(s.effect_parameters.noise_sigma_grey);
+  if (s.effects.has(Effect::GelMarkers)) {
+    const EffectParameters& p = s.effect_parameters;
+    markers_.emplace(sensor(), GelMarkerOptions{p.gel_marker_pitch_mm, p.gel_marker_diameter_mm, p.gel_marker_darkness,
+                                                p.gel_marker_shift_per_slope_mm});
+  }
 }
+
+const GelMarkers& GelSightSimulation::require_markers() const {
+  if (!markers_)
+    throw InputError("the gel's markers were asked for, but the scene " + scene().file.string() +
+                     " has no 'markers' effect: add 'markers' to its effects");
+  return *markers_;
+}
+
+const std::vector<cv::Point2d>& GelSightSimulation::markers_rest_px() const { return require_markers().rest_px(); }
+
+std::vector<cv::Point2d> GelSightSimulation::markers_now_px() const { return require_markers().moved_px(pad().height_mm); }
+
+double GelSightSimulation::marker_diameter_px() const { return require_markers().diameter_px(); }
 
 bool GelSightSimulation::press(const Eigen::Isometry3d& base_from_sensor) {
   press_pad(sensor(), base_from_sensor, object(), contact(), pad_);
@@ -51,7 +69,8 @@ MonoColourFrame GelSightSimulation::render() {
     throw InputError("the GelSight image was asked for, but the scene " + scene().file.string() +
                      " has no 'render' effect: add 'render' to its effects");
   cv::Mat image = renderer_.render(pad().height_mm);
-  // The lens blurs; the sensor then adds its noise.
+  // The dots are on the gel; the lens blurs them with it; the sensor then adds its noise.
+  if (markers_) markers_->draw(image, markers_->moved_px(pad().height_mm));
   if (scene().effects.has(Effect::Blur)) blur_image(image, scene().effect_parameters.blur_sigma_px);
   if (image_noise_) {
     cv::Mat grey_view = image.reshape(1);  // each channel its own noise
@@ -63,7 +82,9 @@ MonoColourFrame GelSightSimulation::render() {
 
 MonoColourFrame GelSightSimulation::render_reference() {
   frame();
-  return stamped(renderer_.background().clone());
+  cv::Mat image = renderer_.background().clone();
+  if (markers_) markers_->draw(image, markers_->rest_px());
+  return stamped(image);
 }
 
 HeightMap GelSightSimulation::height_truth(double contact_threshold_mm) const {

@@ -5,7 +5,8 @@ namespace touchcloud::simulation {
 const std::array<Effect, kEffectCount>& all_effects() {
   static const std::array<Effect, kEffectCount> effects{
       Effect::Contact, Effect::ElasticSpread, Effect::Refraction,    Effect::LensDistortion, Effect::Render,
-      Effect::PixelNoise, Effect::Blur,       Effect::MarkerDropout, Effect::PoseNoise};
+      Effect::PixelNoise, Effect::Blur,       Effect::MarkerDropout, Effect::PoseNoise,
+      Effect::GelMarkers};
   return effects;
 }
 
@@ -20,6 +21,7 @@ const char* to_string(Effect effect) {
     case Effect::Blur: return "blur";
     case Effect::MarkerDropout: return "marker_dropout";
     case Effect::PoseNoise: return "pose_noise";
+    case Effect::GelMarkers: return "markers";
   }
   return "?";
 }

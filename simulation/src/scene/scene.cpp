@@ -51,6 +51,15 @@ void read_effect(Effect effect, const YAML::Node& params, Scene& scene, ConfigPr
       if (p.marker_grey >= p.background_grey * (1 - p.vignetting))
         f.error("marker_grey", "must be darker than the background everywhere");
       break;
+    case Effect::GelMarkers:
+      p.gel_marker_pitch_mm = f.number("pitch_mm", p.gel_marker_pitch_mm, FieldRule::Positive);
+      p.gel_marker_diameter_mm = f.number("diameter_mm", p.gel_marker_diameter_mm, FieldRule::Positive);
+      p.gel_marker_darkness = f.number("darkness", p.gel_marker_darkness, FieldRule::Probability);
+      p.gel_marker_shift_per_slope_mm =
+          f.number("shift_per_slope_mm", p.gel_marker_shift_per_slope_mm, FieldRule::NonNegative);
+      if (p.gel_marker_diameter_mm >= p.gel_marker_pitch_mm)
+        f.error("diameter_mm", "must be less than pitch_mm (dots that do not touch)");
+      break;
     case Effect::Contact:
     case Effect::Refraction:
     case Effect::LensDistortion: break;  // no fields: any given is unknown
@@ -120,6 +129,9 @@ Scene load_scene(const fs::path& file) {
           problems.add(effects, std::string("effects: '") + to_string(e) +
                                     "' does not apply to sensor.family gelsight (a flat gel without markers, seen "
                                     "straight on); remove it");
+    if (scene.family == sensor::SensorFamily::GelStereo && scene.effects.has(Effect::GelMarkers))
+      problems.add(effects, "effects: 'markers' applies to sensor.family gelsight (dots printed on its flat gel); a "
+                            "GelStereo's markers are its gel's marker layout, drawn by 'render'");
   }
   problems.throw_if_any();
   return scene;

@@ -4,8 +4,10 @@
 // apex) and computes the pad's height map (the contact decides the motion).
 // Everything else is computed only when asked for:
 //
-//   render()            the colour image (`render`; pixel_noise, blur)
-//   render_reference()  the no-contact image (no noise)
+//   render()            the colour image (`render`; markers, pixel_noise, blur)
+//   render_reference()  the no-contact image (no noise; markers at rest)
+//   markers_rest_px()   the marker dots' centres at rest and on the last
+//   markers_now_px()    frame's pressed gel (`markers`; the truth of tracking)
 //   height_truth()      the height map with a contact mask from a threshold
 //                       on it (the TactileDataset's ground truth)
 //   truth_tactile()     the pressed pad's surface on a pixel grid as a
@@ -17,6 +19,7 @@
 #include <optional>
 
 #include "touchcloud/simulation/gel/flat_pad_contact.hpp"
+#include "touchcloud/simulation/render/gel_markers.hpp"
 #include "touchcloud/simulation/render/image_noise.hpp"
 #include "touchcloud/simulation/render/photometric_renderer.hpp"
 #include "touchcloud/simulation/touch_simulation.hpp"
@@ -39,6 +42,10 @@ class GelSightSimulation final : public TouchSimulation {
   MonoColourFrame render();
   MonoColourFrame render_reference();
   HeightMap height_truth(double contact_threshold_mm) const;
+  // InputError unless the scene names `markers`.
+  const std::vector<cv::Point2d>& markers_rest_px() const;
+  std::vector<cv::Point2d> markers_now_px() const;
+  double marker_diameter_px() const;
   TactileCloud truth_tactile(int stride_px) const;
   // The pressed pad's surface on the same grid in the base frame (true pose).
   CloudPtr truth_base(int stride_px) const;
@@ -51,6 +58,8 @@ class GelSightSimulation final : public TouchSimulation {
 
   PhotometricRenderer renderer_;
   std::unique_ptr<ImageNoise> image_noise_;
+  std::optional<GelMarkers> markers_;  // when the scene names `markers`
+  const GelMarkers& require_markers() const;
   PadPress pad_;  // of the last frame
 };
 

@@ -20,8 +20,9 @@ enum class Effect {
   Blur,            // Gaussian blur of the images
   MarkerDropout,   // markers missing from a view
   PoseNoise,       // the reported sensor pose is perturbed (the truth is not)
+  GelMarkers,      // GelSight-type: dark dots printed on the gel, moving with it (render/gel_markers.hpp)
 };
-inline constexpr std::size_t kEffectCount = 9;
+inline constexpr std::size_t kEffectCount = 10;
 
 const std::array<Effect, kEffectCount>& all_effects();
 const char* to_string(Effect effect);               // "elastic_spread"
@@ -59,6 +60,11 @@ struct EffectParameters {
   double background_grey = 200.0;  // at the image centre
   double vignetting = 0.35;        // relative fall-off of the background at the corners
   double marker_grey = 40.0;       // a marker dot's centre
+  // markers (GelSight-type): see render/gel_markers.hpp
+  double gel_marker_pitch_mm = 2.0;
+  double gel_marker_diameter_mm = 0.5;
+  double gel_marker_darkness = 0.7;
+  double gel_marker_shift_per_slope_mm = 0.5;
 };
 
 }  // namespace touchcloud::simulation

@@ -4,12 +4,17 @@
 // the no-contact reference), the ball's shape gives every pixel inside it a
 // known gradient, and a polynomial from colour difference to gradient is fitted
 // to all presses at the end (sensor/photometric_calibration.hpp). Writes the
-// calibration file, naming the sensor and its image size.
+// calibration file, naming the sensor and its image size. `markers: mask`
+// fills the gel's marker dots in both images first (imaging/marker_fill.hpp)
+// and records it in the file (`markers: masked`).
 #include <opencv2/core/version.hpp>
+
+#include <optional>
 
 #include "ball_press.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/sensor/gelsight_sensor.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/types/mono_colour_frame.hpp"
@@ -25,6 +30,8 @@ class PhotometricCalibrationStage final : public Stage {
   double ball_radius_mm_ = 4.0;
   double detect_grey_ = 8.0;
   int degree_ = 3;
+  imaging::MarkerMaskParameters markers_;
+  std::optional<imaging::MarkerFill> marker_fill_;  // markers: mask
   sensor::GelSightSensor sensor_;  // read at check
   std::vector<Eigen::Vector3d> difference_;
   std::vector<Eigen::Vector2d> gradient_;
@@ -39,6 +46,7 @@ class PhotometricCalibrationStage final : public Stage {
     p.add("degree", degree_, 3).range(1, 5).doc("total degree of the polynomial from colour difference to gradient");
     p.add("path", path_, std::string("photometric_calibration.yaml")).output_file()
         .doc("calibration file in the output folder");
+    markers_.declare(p);
   }
 
   void declare_ports(PortSet& ports) override {
@@ -60,6 +68,8 @@ class PhotometricCalibrationStage final : public Stage {
     }
   }
 
+  void on_configure(RunContext&) override { marker_fill_ = markers_.make_fill(); }
+
   void require_frame(const MonoColourFramePtr& f, const std::string& port) const {
     const std::string where = "input '" + port + "'";
     if (!f || f->image.empty()) throw InputError(where + ": no image");
@@ -79,9 +89,15 @@ class PhotometricCalibrationStage final : public Stage {
     const auto& reference = io.input<MonoColourFramePtr>("reference");
     require_frame(image, "image");
     require_frame(reference, "reference");
+    cv::Mat seen = image->image, gel = reference->image;
+    if (marker_fill_) {
+      const imaging::FilledPair filled = marker_fill_->fill(seen, gel);
+      seen = filled.image.clone();
+      gel = filled.reference.clone();
+    }
     std::string why;
-    const auto press = photometric::find_ball_press(image->image, reference->image, detect_grey_, ball_radius_mm_,
-                                                    sensor_.mm_per_px, why);
+    const auto press =
+        photometric::find_ball_press(seen, gel, detect_grey_, ball_radius_mm_, sensor_.mm_per_px, why);
     if (!press) {
       ++skipped_;
       ctx.log("frame " + std::to_string(image->index) + " skipped: " + why);
@@ -89,8 +105,7 @@ class PhotometricCalibrationStage final : public Stage {
     }
     ++presses_;
     const std::size_t before = difference_.size();
-    photometric::ball_samples(image->image, reference->image, *press, ball_radius_mm_, sensor_.mm_per_px, difference_,
-                              gradient_);
+    photometric::ball_samples(seen, gel, *press, ball_radius_mm_, sensor_.mm_per_px, difference_, gradient_);
     ctx.metric("press_contact_radius_mm", press->contact_radius_px * sensor_.mm_per_px, "mm");
     ctx.log("press at (" + std::to_string(press->centre_px.x()) + ", " + std::to_string(press->centre_px.y()) +
             ") px, contact radius " + std::to_string(press->contact_radius_px * sensor_.mm_per_px) + " mm: " +
@@ -107,6 +122,7 @@ class PhotometricCalibrationStage final : public Stage {
     c.height_px = sensor_.height_px;
     c.mm_per_px = sensor_.mm_per_px;
     c.gel_thickness_mm = sensor_.gel_thickness_mm;
+    c.markers_masked = marker_fill_.has_value();
     sensor::write_photometric_calibration(c, ctx.output_path(path_));
     ctx.artifact(ArtifactRole::calibration, path_, {{"kind", std::string("photometric")}});
     ctx.metric("presses", static_cast<double>(presses_), "presses");

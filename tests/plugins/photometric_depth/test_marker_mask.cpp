@@ -78,8 +78,10 @@ cv::Mat dots_near_press(const Press& dotted) {
 // The press sits between four dots (the 2 mm grid's cell centre), so its
 // contact rim (radius about 1.9 mm) runs between dots: a dot on the rim
 // itself loses the rim's kink to the fill (see docs/sensors/gelsight.md).
-// The tolerances: the dots' pixels after the fill within 0.005 mm (mean)
-// and 0.02 mm (max) of the dot-free render's error at the same pixels.
+// The tolerances: the dots' pixels after the fill within 0.002 mm (mean)
+// and 0.01 mm (max) of the dot-free render's error at the same pixels
+// (measured: 0.0015 / 0.0066 mm masked, 0.0098 / 0.056 mm left in,
+// 0.0006 / 0.0035 mm without dots).
 TEST(PhotometricDepthMarkers, MaskedDotsLeaveNoBump) {
   TempDir dir;
   const Press bare = press(dir, "[contact, render]", "bare.yaml");
@@ -94,7 +96,7 @@ TEST(PhotometricDepthMarkers, MaskedDotsLeaveNoBump) {
   const HeightError dots_left = height_error(dotted, "none", at_dots);
   EXPECT_EQ(masked, 63);  // the 9 x 7 dots of the grid, all found
   auto within = [&](const HeightError& e) {
-    return e.mean_mm < without_dots.mean_mm + 0.005 && e.max_mm < without_dots.max_mm + 0.02;
+    return e.mean_mm < without_dots.mean_mm + 0.002 && e.max_mm < without_dots.max_mm + 0.01;
   };
   const auto text = [](const char* what, const HeightError& e) {
     return std::string(what) + ": mean " + std::to_string(e.mean_mm) + " mm, max " + std::to_string(e.max_mm) + " mm";

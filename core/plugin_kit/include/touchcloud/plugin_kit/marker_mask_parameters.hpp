@@ -25,7 +25,7 @@ struct MarkerMaskParameters {
   void declare(ParameterSet& p) {
     p.add("markers", markers, MarkerHandling::None, {{"none", MarkerHandling::None}, {"mask", MarkerHandling::Mask}})
         .doc("none: a gel without markers; mask: find the dark marker dots in image and reference and fill them "
-             "(OpenCV inpainting) before the gradients, so a dot is no bump");
+             "(a quadratic fitted around each) before the gradients, so a dot is no bump");
     p.add("marker_diameter_px", diameter_px, std::vector<double>{3, 12}).unit("px").size(2).range(1, 200)
         .doc("markers: mask: [min, max] dot diameter in the image; the filled disc is the max plus 1.5 px each side");
     p.add("marker_contrast_grey", contrast_grey, 20.0).unit("grey levels").above(0).below(255)

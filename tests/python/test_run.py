@@ -186,3 +186,13 @@ def test_every_iteration_returns_each_calls_outputs(source):
     assert len(r.outputs["depth.height"]) == 1  # outside the loop: one call
     last = touchcloud.run(pipeline, outputs=["sim.image"])
     np.testing.assert_array_equal(last.outputs["sim.image"]["image"], frames[-1]["image"])
+
+
+def test_displacement_fields_are_n_by_4_arrays(source):
+    r = touchcloud.run(str(source / "docs/examples/marker_tracking.yaml"), outputs=["track.displacement"])
+    field = r.outputs["track.displacement"]
+    vectors = field["vectors_px"]
+    assert vectors.dtype == np.float64 and vectors.shape == (63, 4)  # x, y at rest, dx, dy (px)
+    assert field["mm_per_px"] == pytest.approx(0.06) and field["reference_markers"] == 63
+    largest = float(np.hypot(vectors[:, 2], vectors[:, 3]).max()) * field["mm_per_px"]
+    assert largest == pytest.approx(r.metrics["track.max_displacement_mm"]["value"], rel=1e-9)

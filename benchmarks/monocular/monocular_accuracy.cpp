@@ -259,7 +259,7 @@ static int run(int argc, char** argv) {
 #endif
                 simulation::load_scene(kSource + "/sample_clouds/gelsight_ball/scene.yaml")};
 #ifdef TOUCHCLOUD_WITH_NETWORKS
-    torch::set_num_threads(1);  // accuracy only; one thread is fastest on a busy 2-core machine
+    torch::set_num_threads(1);  // accuracy only; one thread measured fastest on 2 shared cores
     setup.nets = std::make_unique<learning::TactileNetPair>(contact_net, depth_net);
 #endif
     // Every press descends at 0.04 mm per frame from the first frame: no fast

@@ -237,13 +237,18 @@ json report_data(const std::vector<RunFolder>& runs) {
 
   // The run's headline: its accuracy (Eq. 11) beside what the accuracy hides
   // (completeness, F-score, coverage) and the surface a mask dropped, each
-  // the last value of the first metric of its role.
+  // the last value of the first metric of its role; coverage measured twice
+  // by one stage (of the whole object, of what a press from above sees) both.
   json headline = json::array();
-  for (const char* role : {"accuracy", "completeness", "fscore", "coverage", "masked_points"})
+  for (const std::string role : {"accuracy", "completeness", "fscore", "coverage", "masked_points"})
     if (const std::vector<std::string> named = metrics_of_role(s, role); !named.empty()) {
-      const json& m = s["metrics"][named.front()];
-      headline.push_back({{"role", role}, {"metric", named.front()}, {"value", m.value("value", json())},
-                          {"unit", m.value("unit", "")}});
+      const std::string stage = named.front().substr(0, named.front().find('.') + 1);
+      for (const std::string& name : named) {
+        if (name != named.front() && (role != "coverage" || name.rfind(stage, 0) != 0)) continue;
+        const json& m = s["metrics"][name];
+        headline.push_back({{"role", role}, {"metric", name}, {"value", m.value("value", json())},
+                            {"unit", m.value("unit", "")}});
+      }
     }
   data["headline"] = headline;
 

@@ -20,11 +20,12 @@ namespace {
 // missed (completeness, F-score, coverage) of the same stage. Empty when no
 // metric is of role accuracy.
 std::string headline(const RunRecord& record) {
-  const auto with_role = [&](MetricRole role, const std::string& stage) -> const MetricSeries* {
+  const auto with_role = [&](MetricRole role, const std::string& stage) {
+    std::vector<std::pair<std::string, const MetricSeries*>> found;
     for (const auto& [name, series] : record.metrics)
       if (series.spec.role == role && !series.values.empty() && (stage.empty() || name.rfind(stage, 0) == 0))
-        return &series;
-    return nullptr;
+        found.emplace_back(name.substr(stage.size()), &series);
+    return found;
   };
   std::string accuracy_name;
   for (const auto& [name, series] : record.metrics)
@@ -42,10 +43,17 @@ std::string headline(const RunRecord& record) {
       {MetricRole::completeness, "completeness"}, {MetricRole::fscore, "F-score"}, {MetricRole::coverage, "coverage"}};
   std::ostringstream measured;
   measured << std::setprecision(6);
-  for (const auto& [role, title] : beside)
-    if (const MetricSeries* m = with_role(role, stage))
-      measured << (measured.tellp() > 0 ? ", " : "") << title << " " << m->values.back()
-               << (m->spec.unit.empty() ? "" : " " + m->spec.unit);
+  // A role measured twice (coverage of the whole object and of what a press
+  // from above sees) names each metric.
+  for (const auto& [role, title] : beside) {
+    const auto found = with_role(role, stage);
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      const MetricSeries& m = *found[i].second;
+      measured << (measured.tellp() > 0 ? ", " : "") << (i == 0 ? std::string(title) + " " : "")
+               << m.values.back() << (m.spec.unit.empty() ? "" : " " + m.spec.unit)
+               << (found.size() > 1 ? " (" + found[i].first + ")" : "");
+    }
+  }
   s << "; " << (measured.tellp() > 0 ? measured.str()
                                      : std::string("coverage not measured (the scoring stage computes no "
                                                    "completeness, F-score or recall: add them to its metrics)"));

@@ -2,6 +2,7 @@
 // ground truth (a CAD mesh, sampled, or a cloud).
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -41,6 +42,7 @@ struct GroundTruthSummary {
   std::string kind;
   std::size_t points = 0, triangles = 0, dropped_nonfinite = 0;
   std::size_t hidden_points = 0;  // samples not visible (--visible from_above)
+  std::size_t seen_points = 0;    // of a mesh scored whole, the samples a press from above sees; 0: all or none
   double area_mm2 = 0, spacing_mm = 0, load_time_s = 0;
   std::string error;  // when it could not be loaded
 };
@@ -85,6 +87,7 @@ scoring::GroundTruth load(const std::string& file, const Options& o, int threads
   options.nonfinite = nonfinite_rule(o);
   options.threads = threads;
   options.visible = o.visible;
+  options.flag_seen_from_above = scoring::MetricSelection::parse(o.metrics).fscore;  // for visible recall
   scoring::GroundTruthFile read = scoring::read_ground_truth(file, options);
   // A mesh in metres scores as a speck: every distance would be the object's size.
   if (read.kind == scoring::GroundTruthKind::Mesh)
@@ -92,6 +95,7 @@ scoring::GroundTruth load(const std::string& file, const Options& o, int threads
       throw InputError(file + ": " + *why + " Ground truth is in mm: scale the mesh, or make a scene of it "
                        "(touchcloud-make-scene MESH --scale S) and give that to --gt");
   scoring::GroundTruth gt = scoring::index_ground_truth(std::move(read), options);
+  summary.seen_points = static_cast<std::size_t>(std::count(gt.seen_from_above.begin(), gt.seen_from_above.end(), true));
   summary.kind = scoring::to_string(gt.kind);
   summary.points = gt.points.size();
   summary.triangles = gt.triangles;
@@ -103,8 +107,9 @@ scoring::GroundTruth load(const std::string& file, const Options& o, int threads
   return gt;
 }
 
-void score_one(Outcome& out, const scoring::GroundTruth& gt, const scoring::ScoreOptions& options, const Options& o) {
+void score_one(Outcome& out, const scoring::GroundTruth& gt, scoring::ScoreOptions options, const Options& o) {
   const auto t0 = Clock::now();
+  if (!gt.seen_from_above.empty()) options.seen_from_above = &gt.seen_from_above;
   try {
     scoring::Estimate est = scoring::read_estimate(out.pair.estimate, nonfinite_rule(o));
     out.dropped_nonfinite = est.dropped_nonfinite;
@@ -155,6 +160,7 @@ nlohmann::ordered_json gt_json(const GroundTruthSummary& g, const Options& o) {
     j["seed"] = o.seed;
     j["visible"] = scoring::to_string(o.visible);
     if (o.visible != scoring::Visibility::all) j["hidden_points"] = g.hidden_points;
+    if (g.seen_points > 0) j["seen_from_above_points"] = g.seen_points;
   } else if (g.dropped_nonfinite > 0) {
     j["dropped_nonfinite"] = g.dropped_nonfinite;
   }
@@ -198,7 +204,10 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
                 << format_fixed(g->spacing_mm, 3) << " mm, seed " << o.seed << ")"
                 << (o.visible == scoring::Visibility::from_above
                         ? ", visible from above only (" + std::to_string(g->hidden_points) + " hidden samples left out)"
-                        : ", the whole surface");
+                        : ", the whole surface" +
+                              (g->seen_points > 0 ? " (" + std::to_string(g->seen_points) +
+                                                        " samples seen from above: visible recall)"
+                                                  : std::string()));
     std::cout << "\n";
   }
   std::size_t name_width = 8, gt_width = 12;
@@ -216,6 +225,9 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
     if (shape.metrics.*m.selected)
       titles.push_back(m.value == &scoring::CloudScore::fscore
                            ? "F@" + format_fixed(options.fscore_threshold_mm, 2) + "mm" : m.column);
+  const bool any_visible = std::any_of(outcomes.begin(), outcomes.end(),
+                                       [](const Outcome& r) { return r.score && r.score->visible_recall; });
+  if (any_visible) titles.push_back("visible rec");
   std::cout << std::left << std::setw(static_cast<int>(name_width)) << "estimate";
   if (show_gt) std::cout << "  " << std::setw(static_cast<int>(gt_width)) << "ground truth";
   std::cout << std::right << std::setw(10) << "points";
@@ -231,6 +243,7 @@ void print_table(const std::vector<Outcome>& outcomes, const std::vector<const G
     }
     std::cout << std::right << std::setw(10) << r.score->estimate_points;
     for (const auto& m : r.score->to_score().metrics) std::cout << std::setw(14) << format_fixed(m.value, 3);
+    if (any_visible && !r.score->visible_recall) std::cout << std::setw(14) << "-";
     std::cout << "\n";
   }
 }
@@ -246,12 +259,13 @@ nlohmann::json encode(const Outcome& r, const GroundTruthSummary& g) {
   j["gt"] = {{"file", g.file},       {"kind", g.kind},          {"points", g.points},
              {"triangles", g.triangles}, {"dropped", g.dropped_nonfinite}, {"area", num(g.area_mm2)},
              {"spacing", num(g.spacing_mm)}, {"load_time", num(g.load_time_s)}, {"error", g.error},
-             {"hidden", g.hidden_points}};
+             {"hidden", g.hidden_points}, {"seen", g.seen_points}};
   if (r.score) {
     nlohmann::json s = {{"estimate_points", r.score->estimate_points},
                         {"ground_truth_points", r.score->ground_truth_points},
                         {"fscore_threshold_mm", num(r.score->fscore_threshold_mm)}};
     for (const auto& m : scoring::metric_names()) s[m.name] = num((*r.score).*m.value);
+    if (r.score->visible_recall) s["visible_recall"] = num(*r.score->visible_recall);
     j["score"] = s;
   }
   return j;
@@ -271,6 +285,7 @@ void decode(const nlohmann::json& j, Outcome& r, GroundTruthSummary& g, const sc
     g.triangles = t.at("triangles").get<std::size_t>();
     g.dropped_nonfinite = t.at("dropped").get<std::size_t>();
     g.hidden_points = t.at("hidden").get<std::size_t>();
+    g.seen_points = t.at("seen").get<std::size_t>();
     g.area_mm2 = num(t.at("area"));
     g.spacing_mm = num(t.at("spacing"));
     g.load_time_s = num(t.at("load_time"));
@@ -284,6 +299,7 @@ void decode(const nlohmann::json& j, Outcome& r, GroundTruthSummary& g, const sc
     score.ground_truth_points = s.at("ground_truth_points").get<std::size_t>();
     score.fscore_threshold_mm = num(s.at("fscore_threshold_mm"));
     for (const auto& m : scoring::metric_names()) score.*m.value = num(s.at(m.name));
+    if (s.contains("visible_recall")) score.visible_recall = num(s.at("visible_recall"));
     r.score = score;
   }
 }

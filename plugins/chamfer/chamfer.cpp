@@ -1,6 +1,7 @@
 // chamfer: scores an estimated cloud against ground truth (a CAD mesh,
 // sampled uniformly by area, or a cloud) with the paper's single-directional
 // chamfer distance (Eq. 11) and the other metrics of `touchcloud score`.
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <map>
@@ -85,6 +86,10 @@ class Chamfer final : public Stage {
     ports.metric("recall", "", "share of ground-truth points within fscore_threshold_mm of the estimate (coverage)")
         .higher_is_better()
         .role(MetricRole::coverage);
+    ports.metric("visible_recall", "", "recall over the ground truth a press from above sees (a mesh scored whole "
+                                       "whose sides or bottom are hidden): coverage of what the sensor can reach")
+        .higher_is_better()
+        .role(MetricRole::coverage);
     ports.metric("final_chamfer_mm", "mm", "chamfer_est_to_gt (Eq. 11) of the last item").final().lower_is_better();
     ports.metric("convergence_touches", "touches", "items after which chamfer_est_to_gt stays within 5 % of its final value")
         .final()
@@ -100,6 +105,7 @@ class Chamfer final : public Stage {
     o.mesh_samples = static_cast<std::size_t>(samples_.value_or(0));  // 0: by area
     o.seed = static_cast<std::uint64_t>(sample_seed_);
     o.visible = visible_;
+    o.flag_seen_from_above = options_.metrics.fscore;
     return o;
   }
 
@@ -141,8 +147,12 @@ class Chamfer final : public Stage {
       if (gt_->visible == scoring::Visibility::from_above)
         what << "; visible from above: " << gt_->points.size() << " of " << gt_->points.size() + gt_->hidden_points
              << " samples";
+      if (!gt_->seen_from_above.empty())
+        what << "; seen from above: " << std::count(gt_->seen_from_above.begin(), gt_->seen_from_above.end(), true)
+             << " of " << gt_->points.size() << " samples (visible_recall is the share of those covered)";
       ctx.log(what.str());
     }
+    if (!gt_->seen_from_above.empty()) options_.seen_from_above = &gt_->seen_from_above;
     const bool mesh = gt_->kind == scoring::GroundTruthKind::Mesh;
     if (!samples_ && mesh) ctx.used("samples", static_cast<std::int64_t>(gt_->points.size() + gt_->hidden_points));
     ctx.artifact(ArtifactRole::ground_truth, "", ground_truth_record());
@@ -164,6 +174,9 @@ class Chamfer final : public Stage {
       r["visible"] = std::string(scoring::to_string(gt_->visible));
       r["hidden_points"] = static_cast<std::int64_t>(gt_->hidden_points);
     }
+    if (!gt_->seen_from_above.empty())
+      r["seen_from_above_points"] =
+          static_cast<std::int64_t>(std::count(gt_->seen_from_above.begin(), gt_->seen_from_above.end(), true));
     return r;
   }
 

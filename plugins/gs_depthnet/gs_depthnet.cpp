@@ -32,7 +32,7 @@ class GsDepthNetStage final : public Stage {
     // One thread: on a 2-core machine busy with anything else, libtorch's
     // second thread waits for a core (bench_gs_depthnet: 27.5 ms per pair on
     // one thread, 1.1 s on two, with a load average of 5).
-    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
+    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: measured fastest on 2 cores shared with the other stages)");
   }
 
   void declare_ports(PortSet& ports) override {

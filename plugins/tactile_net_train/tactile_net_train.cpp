@@ -89,7 +89,7 @@ class TactileNetTrain final : public Stage {
         .doc("checkpoint to continue from (weights, optimiser state, epochs done); must be of the same network");
     // One thread: an epoch of the shipped ContactNet's training took 12.6 s on
     // one thread and 31.3 s on two on the shared 2-core machine (load 11).
-    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
+    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: measured fastest on 2 cores shared with the other stages)");
   }
 
   void declare_ports(PortSet& ports) override {

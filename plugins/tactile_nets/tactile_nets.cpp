@@ -35,7 +35,7 @@ class TactileNets final : public Stage {
     // second thread spins waiting for a core (bench_tactile_nets at a load
     // average of 11: 23 ms on one thread, 271 ms on two; with
     // OMP_WAIT_POLICY=PASSIVE in the environment 16-17 ms on either).
-    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: fastest on a busy 2-core machine)");
+    p.add("threads", threads_, 1).range(1, 256).doc("libtorch's intra-op threads (1: measured fastest on 2 cores shared with the other stages)");
   }
 
   void declare_ports(PortSet& ports) override {

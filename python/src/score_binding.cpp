@@ -32,6 +32,7 @@ py::list score(const std::string& gt_file, const std::vector<std::string>& estim
   scoring::GroundTruthOptions gt_options;
   gt_options.mesh_samples = mesh_samples;
   gt_options.seed = seed;
+  gt_options.flag_seen_from_above = true;  // visible_recall, for a closed mesh
   std::optional<scoring::GroundTruth> gt;
   {
     py::gil_scoped_release unlocked;
@@ -39,6 +40,7 @@ py::list score(const std::string& gt_file, const std::vector<std::string>& estim
   }
   scoring::ScoreOptions options;
   options.fscore_threshold_mm = fscore_threshold_mm;
+  if (!gt->seen_from_above.empty()) options.seen_from_above = &gt->seen_from_above;
   py::list rows;
   for (const auto& file : estimates) {
     py::dict row(py::arg("estimate") = file, py::arg("gt") = gt_file);

@@ -283,6 +283,10 @@ TEST_F(ScoreVerb, ASceneIsGroundTruthAndFromAboveScoresWhatAPressCanSee) {
   // On the surface, 10 samples per mm^2 leave 1 / (2 sqrt(10)) = 0.16 mm (docs/scoring.md).
   EXPECT_LT(all["metrics"]["chamfer_est_to_gt_mm"].get<double>(), 0.2);
   EXPECT_LT(all["metrics"]["recall"].get<double>(), 0.3);  // the top and a band of the walls: ~0.22
+  // Scored whole, the share of what a press from above sees stands beside it.
+  EXPECT_NEAR(all["ground_truth"]["seen_from_above_points"].get<double>() / 96000, 1.0 / 6, 0.01);
+  EXPECT_GT(all["metrics"]["visible_recall"].get<double>(), 0.99);
+  EXPECT_FALSE(above["metrics"].contains("visible_recall"));  // there recall is that share
   EXPECT_EQ(above["ground_truth"]["visible"], "from_above");
   EXPECT_NEAR(above["ground_truth"]["hidden_points"].get<double>() / 96000, 5.0 / 6, 0.01);
   EXPECT_GT(above["metrics"]["recall"].get<double>(), 0.99);
@@ -290,6 +294,9 @@ TEST_F(ScoreVerb, ASceneIsGroundTruthAndFromAboveScoresWhatAPressCanSee) {
   const auto table = run_cli({"score", "--gt", path("scene.yaml"), path("top.pcd"), "--samples", "96000",
                               "--visible", "from_above"});
   EXPECT_NE(table.out.find("visible from above only"), std::string::npos) << table.out;
+  const auto whole = run_cli({"score", "--gt", path("scene.yaml"), path("top.pcd"), "--samples", "96000"});
+  EXPECT_NE(whole.out.find("samples seen from above: visible recall"), std::string::npos) << whole.out;
+  EXPECT_NE(whole.out.find("visible rec"), std::string::npos) << whole.out;
   EXPECT_EQ(run_cli({"score", "--gt", path("gt.pcd"), path("est.pcd"), "--visible", "from_above"}).exit_code, 2);
 }
 

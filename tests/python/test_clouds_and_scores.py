@@ -59,3 +59,15 @@ def test_score_refuses_a_threshold_the_cli_refuses(tmp_path, threshold):
     touchcloud.write_cloud(str(tmp_path / "gt.pcd"), grid(5))
     with pytest.raises(ValueError, match="fscore_threshold_mm must be a positive, finite number of mm"):
         touchcloud.score(str(tmp_path / "gt.pcd"), [str(tmp_path / "gt.pcd")], fscore_threshold_mm=threshold)
+
+
+def test_a_closed_mesh_scored_whole_gets_the_coverage_of_what_a_press_from_above_sees(tmp_path):
+    # A 20 mm cube as an OBJ; the estimate is its top, 1 mm apart.
+    corners = [(20 * (i & 1), 20 * ((i >> 1) & 1), 20 * ((i >> 2) & 1)) for i in range(8)]
+    faces = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
+    (tmp_path / "cube.obj").write_text("".join(f"v {x} {y} {z}\n" for x, y, z in corners) +
+                                       "".join(f"f {a + 1} {b + 1} {c + 1} {d + 1}\n" for a, b, c, d in faces))
+    touchcloud.write_cloud(str(tmp_path / "top.pcd"), grid(21, z=20.0))
+    row = touchcloud.score(str(tmp_path / "cube.obj"), [str(tmp_path / "top.pcd")], mesh_samples=60000)[0]
+    assert row["recall"] < 0.3                         # the top and a band of the walls
+    assert row["visible_recall"] > 0.99                # all a press from above can see

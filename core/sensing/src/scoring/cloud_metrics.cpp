@@ -114,6 +114,7 @@ Score CloudScore::to_score() const {
   Score s;
   for (const auto& m : metric_names())
     if (metrics.*m.selected) s.metrics.push_back({m.name, this->*m.value, m.unit});
+  if (visible_recall) s.metrics.push_back({"visible_recall", *visible_recall, ""});
   return s;
 }
 
@@ -149,8 +150,9 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
 
   const Points& all_gt = ground_truth.points();
   Points strided;
+  std::size_t stride = 1;
   if (options.gt_to_est_samples && *options.gt_to_est_samples < all_gt.size()) {
-    const std::size_t stride = (all_gt.size() + *options.gt_to_est_samples - 1) / *options.gt_to_est_samples;
+    stride = (all_gt.size() + *options.gt_to_est_samples - 1) / *options.gt_to_est_samples;
     strided.reserve(all_gt.size() / stride + 1);
     for (std::size_t i = 0; i < all_gt.size(); i += stride) strided.push_back(all_gt[i]);
   }
@@ -166,6 +168,17 @@ CloudScore score_estimate(const Points& estimate, const NearestPointIndex& groun
     s.precision = share_below(est_to_gt, options.fscore_threshold_mm);
     s.recall = share_below(gt_to_est, options.fscore_threshold_mm);
     s.fscore = s.precision + s.recall > 0 ? 2 * s.precision * s.recall / (s.precision + s.recall) : 0.0;
+    if (options.seen_from_above) {
+      if (options.seen_from_above->size() != all_gt.size())
+        throw InputError("the visibility flags do not match the ground truth's points");
+      std::size_t seen = 0, covered = 0;
+      for (std::size_t k = 0; k < gt_to_est.size(); ++k)
+        if ((*options.seen_from_above)[k * stride]) {
+          ++seen;
+          covered += gt_to_est[k] < options.fscore_threshold_mm;
+        }
+      s.visible_recall = seen > 0 ? static_cast<double>(covered) / static_cast<double>(seen) : 0.0;
+    }
   }
   return s;
 }

@@ -78,8 +78,15 @@ GroundTruth index_ground_truth(GroundTruthFile file, const GroundTruthOptions& o
     samples = std::move(seen);
     if (samples.empty()) throw InputError(file.file.string() + ": no sample of the mesh is visible from above");
   }
-  return GroundTruth{file.file, GroundTruthKind::Mesh, 0, file.area_mm2, file.mesh.triangles.size(),
-                     NearestPointIndex(std::move(samples), options.threads), options.visible, hidden};
+  GroundTruth gt{file.file, GroundTruthKind::Mesh, 0, file.area_mm2, file.mesh.triangles.size(),
+                 NearestPointIndex(std::move(samples), options.threads), options.visible, hidden};
+  if (options.flag_seen_from_above && options.visible == Visibility::all) {
+    gt.seen_from_above = seen_from_above(file.mesh, gt.points.points());
+    // An open surface seen whole from above has nothing hidden to tell apart.
+    if (std::find(gt.seen_from_above.begin(), gt.seen_from_above.end(), false) == gt.seen_from_above.end())
+      gt.seen_from_above.clear();
+  }
+  return gt;
 }
 
 GroundTruth load_ground_truth(const std::filesystem::path& file, const GroundTruthOptions& options) {

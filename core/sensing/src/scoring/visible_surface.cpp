@@ -29,7 +29,7 @@ constexpr double kOnEdge = 1e-9;
 
 }  // namespace
 
-Points visible_from_above(const TriangleMesh& mesh, const Points& points) {
+std::vector<bool> seen_from_above(const TriangleMesh& mesh, const Points& points) {
   Eigen::AlignedBox2d box;
   for (const auto& v : mesh.vertices) box.extend(v.head<2>());
   std::vector<Projected> triangles;
@@ -62,8 +62,9 @@ Points visible_from_above(const TriangleMesh& mesh, const Points& points) {
       for (int x = cell_of(b.min().x(), box.min().x(), nx); x <= cell_of(b.max().x(), box.min().x(), nx); ++x)
         bins[static_cast<std::size_t>(y) * nx + x].push_back(i);
   }
-  Points visible;
-  for (const auto& p : points) {
+  std::vector<bool> seen(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector3d& p = points[k];
     // A point a rounding step outside the box is in its edge bin (clamped),
     // with the triangles whose edge it lies on.
     bool hidden = false;
@@ -81,8 +82,16 @@ Points visible_from_above(const TriangleMesh& mesh, const Points& points) {
         break;
       }
     }
-    if (!hidden) visible.push_back(p);
+    seen[k] = !hidden;
   }
+  return seen;
+}
+
+Points visible_from_above(const TriangleMesh& mesh, const Points& points) {
+  const std::vector<bool> seen = seen_from_above(mesh, points);
+  Points visible;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (seen[k]) visible.push_back(points[k]);
   return visible;
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/scoring/cloud_metrics.hpp"
 #include "touchcloud/scoring/ground_truth.hpp"
 #include "touchcloud/scoring/visible_surface.hpp"
 
@@ -81,6 +82,46 @@ TEST(VisibleFromAbove, GroundTruthKeepsTheDensityAndCountsWhatItLeftOut) {
   cloud.file = "points.pcd";
   cloud.cloud = {{0, 0, 0}};
   EXPECT_THROW(scoring::index_ground_truth(cloud, options), InputError);
+}
+
+// A perfect reconstruction of a cube's top covers a sixth of the cube and
+// all of what a press from above sees: both shares are reported, in the
+// index's order whatever stride the ground truth -> estimate direction takes.
+TEST(VisibleFromAbove, VisibleRecallIsTheCoverageOfWhatAPressFromAboveSees) {
+  scoring::GroundTruthFile file;
+  file.file = "cube.obj";
+  file.kind = scoring::GroundTruthKind::Mesh;
+  file.mesh = closed_cube(10);
+  file.area_mm2 = 600;
+  scoring::GroundTruthOptions options;
+  options.mesh_samples = 60000;
+  options.flag_seen_from_above = true;
+  const scoring::GroundTruth gt = scoring::index_ground_truth(file, options);
+  ASSERT_EQ(gt.seen_from_above.size(), gt.points.size());
+  for (std::size_t i = 0; i < gt.points.size(); ++i) {  // the top seen; walls and bottom not, but at the top's edge
+    const double z = gt.points.points()[i].z();
+    if (z > 10 - 1e-9 || z < 10 - 1e-3) ASSERT_EQ(gt.seen_from_above[i], z > 10 - 1e-9) << gt.points.points()[i].transpose();
+  }
+
+  scoring::Points top;
+  for (double x = 0.25; x < 10; x += 0.5)
+    for (double y = 0.25; y < 10; y += 0.5) top.emplace_back(x, y, 10);
+  for (const std::optional<std::size_t> stride : {std::optional<std::size_t>(), std::optional<std::size_t>(5000)}) {
+    scoring::ScoreOptions score;
+    score.gt_to_est_samples = stride;
+    score.seen_from_above = &gt.seen_from_above;
+    const scoring::CloudScore s = scoring::score_estimate(top, gt.points, score);
+    // The top (100 of 600 mm^2) and the walls' upper 1.5 mm (60 mm^2), within the threshold of it.
+    EXPECT_NEAR(s.recall, 160.0 / 600, 0.01);
+    ASSERT_TRUE(s.visible_recall);
+    EXPECT_DOUBLE_EQ(*s.visible_recall, 1.0);
+    EXPECT_EQ(s.to_score().metrics.back().name, "visible_recall");
+  }
+  // Without the flags, nothing is claimed about the visible part.
+  EXPECT_FALSE(scoring::score_estimate(top, gt.points).visible_recall);
+  // Asked for with visible from_above, every point left is seen: no flags.
+  options.visible = scoring::Visibility::from_above;
+  EXPECT_TRUE(scoring::index_ground_truth(file, options).seen_from_above.empty());
 }
 
 TEST(UnitMistake, AMeshInMetresOrMicrometresIsNamedAndMillimetresPass) {

@@ -74,6 +74,10 @@ struct ScoreOptions {
   // Its Hausdorff half is then a lower bound, short of the true one by at
   // most the stride's spacing. Not set: every point.
   std::optional<std::size_t> gt_to_est_samples;
+  // Per ground-truth point, in the index's order, whether a press from above
+  // sees it (GroundTruth::seen_from_above): with the F-score, visible_recall
+  // is the recall over those points alone.
+  const std::vector<bool>* seen_from_above = nullptr;
 };
 
 // The outcome for one estimate; only the selected metrics are set.
@@ -83,10 +87,15 @@ struct CloudScore {
   double chamfer_est_to_gt_mm = 0, chamfer_gt_to_est_mm = 0, chamfer_symmetric_mm = 0, p95_est_to_gt_mm = 0,
          hausdorff_mm = 0;
   double fscore = 0, precision = 0, recall = 0, fscore_threshold_mm = 0;
+  // Recall over the ground truth a press from above sees (a closed object's
+  // top, not its sides and bottom): the coverage of what the sensor can reach.
+  // Set with ScoreOptions::seen_from_above and the F-score.
+  std::optional<double> visible_recall;
 
   // The selected metrics as named values with units ("mm", or "" for ratios),
   // in the order of metric_names(); the F-score comes with "precision" and
-  // "recall" (its threshold is a setting, fscore_threshold_mm, not a result).
+  // "recall" (its threshold is a setting, fscore_threshold_mm, not a result),
+  // and visible_recall last where it is set.
   Score to_score() const;
 };
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "touchcloud/io/cloud_file.hpp"
 #include "touchcloud/scoring/nearest_point_index.hpp"
@@ -34,6 +35,10 @@ struct GroundTruthOptions {
   // from_above: of a mesh's samples, only those a press from above can
   // reach (visible_from_above); a cloud is refused, having no surfaces.
   Visibility visible = Visibility::all;
+  // With visible all, a mesh's samples are also flagged by whether a press
+  // from above sees them (GroundTruth::seen_from_above), so the share of the
+  // reachable surface covered can stand beside the share of the whole.
+  bool flag_seen_from_above = false;
 };
 
 struct GroundTruth {
@@ -45,6 +50,10 @@ struct GroundTruth {
   NearestPointIndex points;           // the points scored against, indexed
   Visibility visible = Visibility::all;
   std::size_t hidden_points = 0;      // samples dropped as not visible
+  // Meshes scored whole, when asked (flag_seen_from_above): per indexed point,
+  // in the index's order, whether a press from above sees it; empty otherwise
+  // and when it sees every point (an open surface).
+  std::vector<bool> seen_from_above;
 
   // Mean spacing of the samples on a mesh, sqrt(area / samples drawn); 0 for clouds.
   double sample_spacing_mm() const;

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
@@ -23,6 +24,8 @@ const char* to_string(Visibility visibility);  // "all", "from_above"
 // lies under the edge of the face above it and is hidden by it, as in a
 // z-buffer; walls hide nothing themselves.
 Points visible_from_above(const TriangleMesh& mesh, const Points& points);
+// The same test as a flag per point, in the points' order.
+std::vector<bool> seen_from_above(const TriangleMesh& mesh, const Points& points);
 
 // A mesh whose size suggests it is not in millimetres (under 5 mm or over
 // 2 m across): what it measures and the unit it is likely in; nullopt when

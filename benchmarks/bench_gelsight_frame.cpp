@@ -19,12 +19,10 @@
 #include <map>
 #include <memory>
 
+#include "support/loaded_stage.hpp"
 #include "touchcloud/imaging/marker_fill.hpp"
-#include "touchcloud/plugin_registry.hpp"
-#include "touchcloud/run_context.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/simulation/gelsight_simulation.hpp"
-#include "touchcloud/stage.hpp"
 #include "touchcloud/types/height_map.hpp"
 #include "touchcloud/types/mono_colour_frame.hpp"
 #include "touchcloud/types/point_cloud.hpp"
@@ -73,34 +71,7 @@ std::string masked_calibration() {
   return file;
 }
 
-// A plugin's stage, configured, driven one frame at a time as the runtime does.
-class LoadedStage {
- public:
-  LoadedStage(const std::string& plugin, const std::map<std::string, ParamValue>& params)
-      : stage_(registry().load(plugin).create()), ctx_(plugin, 1, record_) {
-    stage_->declare(params_, ports_);
-    for (const auto& [name, value] : params) params_.assign(name, value);
-    stage_->check(ctx_);
-    stage_->configure(ctx_);
-  }
-  std::any run(std::map<std::string, std::any> inputs, const std::string& output) {
-    StageIO io(ports_, std::move(inputs), {output});
-    stage_->process(io, ctx_);
-    record_.metrics.clear();  // per-frame metrics would pile up over many frames
-    return io.outputs().at(output);
-  }
-
- private:
-  static PluginRegistry& registry() {
-    static PluginRegistry r;
-    return r;
-  }
-  std::unique_ptr<Stage> stage_;
-  ParameterSet params_;
-  PortSet ports_;
-  RunRecord record_;
-  RunContext ctx_;
-};
+using bench::LoadedStage;
 
 void BM_Frame(benchmark::State& state) {
   const bool markers = state.range(0) != 0, decode = state.range(1) != 0;

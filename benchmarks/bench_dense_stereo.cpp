@@ -32,6 +32,7 @@
 #include <set>
 
 #include "touchcloud/simulation/gelstereo_simulation.hpp"
+#include "support/loaded_stage.hpp"
 #include "touchcloud/plugin_registry.hpp"
 #include "touchcloud/run_context.hpp"
 #include "touchcloud/stage.hpp"
@@ -80,33 +81,7 @@ const Press& press(int size) {
   return it->second;
 }
 
-// A plugin's stage, configured, driven one frame at a time as the runtime does.
-class LoadedStage {
- public:
-  LoadedStage(const std::string& plugin, const std::map<std::string, ParamValue>& params)
-      : stage_(registry().load(plugin).create()), ctx_(plugin, 1, record_) {
-    stage_->declare(params_, ports_);
-    for (const auto& [name, value] : params) params_.assign(name, value);
-    stage_->configure(ctx_);
-  }
-  std::any run(std::map<std::string, std::any> inputs, const std::string& output) {
-    StageIO io(ports_, std::move(inputs), {output});
-    stage_->process(io, ctx_);
-    record_.metrics.clear();  // per-frame metrics would pile up over millions of frames
-    return io.outputs().at(output);
-  }
-
- private:
-  static PluginRegistry& registry() {
-    static PluginRegistry r;
-    return r;
-  }
-  std::unique_ptr<Stage> stage_;
-  ParameterSet params_;
-  PortSet ports_;
-  RunRecord record_;
-  RunContext ctx_;
-};
+using bench::LoadedStage;
 
 std::map<std::string, ParamValue> matcher_params(const std::string& method, int size, bool lr_check) {
   return {{"method", method}, {"block_size_px", std::int64_t{7}},

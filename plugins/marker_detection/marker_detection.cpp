@@ -6,6 +6,7 @@
 #include "touchcloud/imaging/stereo_markers.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/camera_image.hpp"
+#include "touchcloud/types/mono_colour_frame.hpp"
 #include <opencv2/core/version.hpp>
 #include "touchcloud/library_versions.hpp"
 
@@ -72,8 +73,10 @@ class MarkerDetection final : public Stage {
     ports.one_of_inputs<StereoFramePtr>("images", "frame", "stereo images, 8-bit grey or BGR, both the same size");
     ports.one_of_inputs<CameraImagePtr>("images", "image",
                                         "one camera's image (a single-camera sensor), 8-bit grey or BGR");
+    ports.one_of_inputs<MonoColourFramePtr>("images", "colour",
+                                            "a GelSight-type sensor's colour image (its dots on the gel), 8-bit BGR");
     ports.output<MarkerSetPtr>("markers", "sub-pixel marker centres per view (id -1, quality in [0, 1]); "
-                                          "matches empty; from `image`: its view only");
+                                          "matches empty; from `image`: its view only; from `colour`: mono");
     ports.metric("markers_left", "markers", "markers found in the left image");
     ports.metric("markers_right", "markers", "markers found in the right image");
     ports.metric("markers_mono", "markers", "markers found in a single camera's image");
@@ -98,6 +101,12 @@ class MarkerDetection final : public Stage {
     std::shared_ptr<MarkerSet> markers;
     if (const auto* frame = io.optional_input<StereoFramePtr>("frame")) {
       markers = std::make_shared<MarkerSet>(stereo_->detect(*frame, "frame"));
+    } else if (const auto* colour = io.optional_input<MonoColourFramePtr>("colour")) {
+      if (!*colour) throw InputError("input 'colour': no colour image (null)");
+      markers = std::make_shared<MarkerSet>();
+      markers->views = {CameraView::Mono};
+      markers->mono = one_camera_->detect((*colour)->image, "input 'colour'");
+      markers->timestamp_s = (*colour)->timestamp_s;
     } else {
       const auto& image = io.input<CameraImagePtr>("image");
       if (!image) throw InputError("input 'image': no camera image (null)");

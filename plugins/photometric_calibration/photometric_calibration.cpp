@@ -9,11 +9,14 @@
 // held-out share. Writes the calibration file and a report: each image's
 // circle or why it has none (a table and a contact sheet), and the ball's cap
 // reconstructed with the calibration (photometric depth) against the ideal
-// sphere, for the fitted presses and the held-out ones apart.
+// sphere, for the fitted presses and the held-out ones apart. `markers: mask`
+// fills the gel's marker dots in both images first (imaging/marker_fill.hpp)
+// and records it in the file (`markers: masked`).
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include <opencv2/core/version.hpp>
 
@@ -22,8 +25,10 @@
 #include "touchcloud/imaging/ball_press.hpp"
 #include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/imaging/picture_file.hpp"
+#include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/sensor/gelsight_sensor.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
@@ -70,6 +75,8 @@ class PhotometricCalibrationStage final : public Stage {
   int degree_ = 3;
   double holdout_ = 0;
   imaging::CircleMethod circle_method_ = imaging::CircleMethod::EdgeFit;
+  imaging::MarkerMaskParameters markers_;
+  std::optional<imaging::MarkerFill> marker_fill_;  // markers: mask
   sensor::GelSightSensor sensor_;                                  // read at check
   std::map<std::string, photometric::PressCorrection> corrections_;  // read at check
   std::vector<Press> presses_;
@@ -99,6 +106,7 @@ class PhotometricCalibrationStage final : public Stage {
     p.add("contact_sheet", sheet_path_, std::string("ball_presses.png")).output_file()
         .doc("every image with its circle drawn, PNG in the output folder");
     p.rule({"contact_sheet"}, [this] { return imaging::picture_path_problem(sheet_path_); });
+    markers_.declare(p);
   }
 
   void declare_ports(PortSet& ports) override {
@@ -138,6 +146,8 @@ class PhotometricCalibrationStage final : public Stage {
                                                          ball_radius_mm_ / sensor_.mm_per_px);
   }
 
+  void on_configure(RunContext&) override { marker_fill_ = markers_.make_fill(); }
+
   void require_frame(const MonoColourFramePtr& f, const std::string& port) const {
     const std::string where = "input '" + port + "'";
     if (!f || f->image.empty()) throw InputError(where + ": no image");
@@ -162,11 +172,16 @@ class PhotometricCalibrationStage final : public Stage {
     press.name = stamp && !stamp->source.empty() ? stamp->source : "frame " + std::to_string(image->index);
     press.image = image->image;
     press.reference = reference->image;
+    if (marker_fill_) {  // the dots filled before the circle is looked for and the fit reads the colours
+      const imaging::FilledPair filled = marker_fill_->fill(press.image, press.reference);
+      press.image = filled.image.clone();
+      press.reference = filled.reference.clone();
+    }
     if (const auto c = corrections_.find(press.name); c != corrections_.end()) {
       press.circle = c->second.circle;
       press.status = press.circle ? PressStatus::Corrected : PressStatus::Skipped;
     } else {
-      auto found = imaging::find_ball_press(image->image, reference->image, detect_grey_, ball_radius_mm_,
+      auto found = imaging::find_ball_press(press.image, press.reference, detect_grey_, ball_radius_mm_,
                                             sensor_.mm_per_px, circle_method_);
       press.circle = found.circle;
       press.status = found.circle ? PressStatus::Found : PressStatus::Refused;
@@ -225,6 +240,7 @@ class PhotometricCalibrationStage final : public Stage {
     c.height_px = sensor_.height_px;
     c.mm_per_px = sensor_.mm_per_px;
     c.gel_thickness_mm = sensor_.gel_thickness_mm;
+    c.markers_masked = marker_fill_.has_value();
 
     // The caps, reconstructed as photometric_depth would with its defaults.
     imaging::PhotometricDepthSolver solver(c, imaging::DepthOptions{});

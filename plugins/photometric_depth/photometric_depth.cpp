@@ -7,13 +7,19 @@
 // Each map is checked (imaging/depth_checks.hpp: height beyond the gel,
 // contact nearly everywhere, a reference of another exposure): `checks`
 // says whether a finding warns (a metric and a note in summary.json, a log
-// line) or stops the run as bad input.
+// line) or stops the run as bad input. `markers: mask` finds the gel's
+// marker dots in both images and fills them (imaging/marker_fill.hpp)
+// before the colour difference becomes a gradient. A calibration fitted to a
+// gel without markers fed images with markers (at least kMarkersSeen dots
+// found) is a finding of the checks too.
+#include <optional>
 #include <set>
 
 #include <fftw3.h>
 #include <opencv2/core/version.hpp>
 
 #include "touchcloud/imaging/depth_checks.hpp"
+#include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
@@ -25,6 +31,10 @@ namespace touchcloud {
 namespace {
 const LibraryVersion opencv_version("opencv", CV_VERSION);
 const LibraryVersion fftw_library("fftw", ::fftw_version);  // "fftw-3.3.10-..."
+
+// Dots found in an image before it counts as a gel with markers: a stray
+// dark speck or two is not a marker grid.
+constexpr std::size_t kMarkersSeen = 5;
 
 std::string size_text(int width, int height) { return std::to_string(width) + " x " + std::to_string(height) + " px"; }
 }  // namespace
@@ -38,6 +48,9 @@ class PhotometricDepth final : public Stage {
   imaging::DepthCheckLimits limits_;  // the gel's thickness from the calibration, at check
   sensor::PhotometricCalibration calibration_;  // read at check
   std::unique_ptr<imaging::PhotometricDepthSolver> solver_;
+  imaging::MarkerMaskParameters markers_;
+  std::optional<imaging::MarkerFill> marker_fill_;  // markers: mask
+  std::optional<imaging::MarkerDetector> marker_check_;  // markers: none, a calibration without markers
   std::set<std::string> noted_;  // the notes written so far
 
   void declare_parameters(ParameterSet& p) override {
@@ -62,6 +75,7 @@ class PhotometricDepth final : public Stage {
     p.add("max_exposure_grey", limits_.max_exposure_grey, 8.0).unit("grey levels").at_least(0)
         .doc("check: the image's and the reference's mean brightness where the gel is flat (outside the contact) "
              "may differ by this much");
+    markers_.declare(p);
   }
 
   void declare_ports(PortSet& ports) override {
@@ -73,8 +87,9 @@ class PhotometricDepth final : public Stage {
     ports.metric("contact_share", "1", "share of the pixels in contact");
     ports.metric("exposure_difference_grey", "grey levels",
                  "image minus reference, mean brightness where the gel is flat (outside the contact)");
+    ports.metric("markers_masked", "markers", "markers: mask: dots found in the image (and filled)");
     ports.metric("depth_warnings", "checks", "checks this map failed (see the notes height_over_gel, "
-                 "contact_everywhere, exposure_mismatch)").lower_is_better();
+                 "contact_everywhere, exposure_mismatch, markers_not_calibrated)").lower_is_better();
   }
 
   void on_check(RunContext&) override {
@@ -92,6 +107,8 @@ class PhotometricDepth final : public Stage {
 
   void on_configure(RunContext& ctx) override {
     solver_ = std::make_unique<imaging::PhotometricDepthSolver>(calibration_, options_);
+    marker_fill_ = markers_.make_fill();
+    if (!marker_fill_ && !calibration_.markers_masked) marker_check_.emplace(markers_.detector());
     ctx.note("calibration_sensor", calibration_.sensor);
     ctx.log("calibration of " + calibration_.sensor + " at " +
             size_text(calibration_.width_px, calibration_.height_px) + ", polynomial degree " +
@@ -123,7 +140,8 @@ class PhotometricDepth final : public Stage {
       if (checks_ == CheckAction::Error) throw InputError(message + " (checks: error)");
       const char* note = f.problem == imaging::DepthProblem::HeightOverGel       ? "height_over_gel"
                          : f.problem == imaging::DepthProblem::ContactEverywhere ? "contact_everywhere"
-                                                                                 : "exposure_mismatch";
+                         : f.problem == imaging::DepthProblem::ExposureMismatch  ? "exposure_mismatch"
+                                                                                 : "markers_not_calibrated";
       if (noted_.insert(note).second) ctx.note(note, message);
       ctx.log("warning: " + message);
     }
@@ -134,7 +152,17 @@ class PhotometricDepth final : public Stage {
     const auto& reference = io.input<MonoColourFramePtr>("reference");
     require_frame(image, "image");
     require_frame(reference, "reference");
-    imaging::DepthResult r = solver_->solve(image->image, reference->image);
+    imaging::DepthResult r;
+    std::size_t markers_seen = 0;
+    if (marker_fill_) {
+      const imaging::FilledPair filled = marker_fill_->fill(image->image, reference->image);
+      markers_seen = filled.image_markers;
+      ctx.metric("markers_masked", static_cast<double>(markers_seen), "markers");
+      r = solver_->solve(filled.image, filled.reference);
+    } else {
+      if (marker_check_) markers_seen = marker_check_->detect(image->image, "input 'image'").size();
+      r = solver_->solve(image->image, reference->image);
+    }
     auto map = std::make_shared<HeightMap>();
     map->height_mm = r.height_mm;
     map->valid = cv::Mat(r.height_mm.size(), CV_8UC1, cv::Scalar(255));
@@ -145,8 +173,14 @@ class PhotometricDepth final : public Stage {
     map->timestamp_s = image->timestamp_s;
     map->index = image->index;
     map->pose = image->pose;
-    const imaging::DepthCheckResult checked =
+    imaging::DepthCheckResult checked =
         imaging::check_depth(r.height_mm, r.contact_mask, image->image, reference->image, limits_);
+    if (!calibration_.markers_masked && markers_seen >= kMarkersSeen)
+      checked.findings.push_back(
+          {imaging::DepthProblem::MarkersNotCalibrated,
+           std::to_string(markers_seen) + " marker dots found in the image, but the calibration " + calibration_file_ +
+               " was fitted to a gel without markers (no 'markers: masked'): calibrate this gel with "
+               "photometric_calibration's markers: mask"});
     report_findings(checked, image->index, ctx);
     ctx.metric("max_height_mm", checked.max_height_mm, "mm");
     ctx.metric("flat_pixels", static_cast<double>(r.flat_pixels), "px");

@@ -10,6 +10,7 @@
 #include "touchcloud/types/colour_stereo_frame.hpp"
 #include "touchcloud/types/contact_state.hpp"
 #include "touchcloud/types/dense_maps.hpp"
+#include "touchcloud/types/displacement_field.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/frames.hpp"
 #include "touchcloud/types/height_map.hpp"
@@ -149,6 +150,18 @@ py::object to_python(const std::string& key, const std::any& value) {
   if (const auto* v = std::any_cast<TouchTarget>(&value))
     return py::dict(py::arg("xy_mm") = py::make_tuple(v->xy_mm.x(), v->xy_mm.y()), py::arg("grid_index") = v->grid_index,
                     py::arg("exploratory") = v->exploratory);
+  if (const auto* v = std::any_cast<DisplacementFieldPtr>(&value)) {
+    // N x 4: x_px, y_px at rest, dx_px, dy_px; the mm through mm_per_px.
+    const DisplacementField& f = **v;
+    py::array_t<double> a(std::vector<py::ssize_t>{static_cast<py::ssize_t>(f.markers.size()), 4});
+    auto m = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < f.markers.size(); ++i) {
+      m(i, 0) = f.markers[i].rest_px.x(), m(i, 1) = f.markers[i].rest_px.y();
+      m(i, 2) = f.markers[i].displacement_px.x(), m(i, 3) = f.markers[i].displacement_px.y();
+    }
+    return py::dict(py::arg("vectors_px") = a, py::arg("mm_per_px") = f.mm_per_px,
+                    py::arg("reference_markers") = f.reference_markers, py::arg("timestamp_s") = f.timestamp_s);
+  }
   if (const auto* v = std::any_cast<MarkerSetPtr>(&value)) {
     // Per view: an N x 4 array of x_px, y_px, id, quality.
     const auto markers = [](const std::vector<Marker>& list) {

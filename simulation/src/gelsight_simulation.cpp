@@ -34,6 +34,11 @@ GelSightSimulation::GelSightSimulation(Scene scene, std::uint64_t noise_seed,
         lens_fall_.at<cv::Vec3f>(v, u) = cv::Vec3f(fall, fall, fall);
       }
   }
+  if (s.effects.has(Effect::GelMarkers)) {
+    const EffectParameters& p = s.effect_parameters;
+    markers_.emplace(sensor(), GelMarkerOptions{p.gel_marker_pitch_mm, p.gel_marker_diameter_mm, p.gel_marker_darkness,
+                                                p.gel_marker_shift_per_slope_mm});
+  }
 }
 
 void GelSightSimulation::apply_lens_and_exposure(cv::Mat& image, bool frame) const {
@@ -46,6 +51,19 @@ void GelSightSimulation::apply_lens_and_exposure(cv::Mat& image, bool frame) con
   if (drift) light.convertTo(image, CV_8UC3, p.exposure_gain, p.exposure_offset_grey);  // rounds and saturates
   else light.convertTo(image, CV_8UC3);
 }
+
+const GelMarkers& GelSightSimulation::require_markers() const {
+  if (!markers_)
+    throw InputError("the gel's markers were asked for, but the scene " + scene().file.string() +
+                     " has no 'markers' effect: add 'markers' to its effects");
+  return *markers_;
+}
+
+const std::vector<cv::Point2d>& GelSightSimulation::markers_rest_px() const { return require_markers().rest_px(); }
+
+std::vector<cv::Point2d> GelSightSimulation::markers_now_px() const { return require_markers().moved_px(pad().height_mm); }
+
+double GelSightSimulation::marker_diameter_px() const { return require_markers().diameter_px(); }
 
 bool GelSightSimulation::press(const Eigen::Isometry3d& base_from_sensor) {
   press_pad(sensor(), base_from_sensor, object(), contact(), pad_);
@@ -73,8 +91,10 @@ MonoColourFrame GelSightSimulation::render() {
     throw InputError("the GelSight image was asked for, but the scene " + scene().file.string() +
                      " has no 'render' effect: add 'render' to its effects");
   cv::Mat image = renderer_.render(pad().height_mm);
+  // The dots are on the gel, under the lens's fall-off and the exposure; the lens blurs them
+  // with it; the sensor then adds its noise.
+  if (markers_) markers_->draw(image, markers_->moved_px(pad().height_mm));
   apply_lens_and_exposure(image, true);
-  // The lens blurs; the sensor then adds its noise.
   if (scene().effects.has(Effect::Blur)) blur_image(image, scene().effect_parameters.blur_sigma_px);
   if (image_noise_) {
     cv::Mat grey_view = image.reshape(1);  // each channel its own noise
@@ -87,6 +107,7 @@ MonoColourFrame GelSightSimulation::render() {
 MonoColourFrame GelSightSimulation::render_reference() {
   frame();
   cv::Mat image = renderer_.background().clone();
+  if (markers_) markers_->draw(image, markers_->rest_px());
   apply_lens_and_exposure(image, false);
   return stamped(image);
 }

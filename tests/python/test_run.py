@@ -186,3 +186,30 @@ def test_every_iteration_returns_each_calls_outputs(source):
     assert len(r.outputs["depth.height"]) == 1  # outside the loop: one call
     last = touchcloud.run(pipeline, outputs=["sim.image"])
     np.testing.assert_array_equal(last.outputs["sim.image"]["image"], frames[-1]["image"])
+
+
+def test_displacement_fields_are_n_by_4_arrays(source):
+    r = touchcloud.run(str(source / "docs/examples/marker_tracking.yaml"), outputs=["track.displacement"])
+    field = r.outputs["track.displacement"]
+    vectors = field["vectors_px"]
+    assert vectors.dtype == np.float64 and vectors.shape == (63, 4)  # x, y at rest, dx, dy (px)
+    assert field["mm_per_px"] == pytest.approx(0.06) and field["reference_markers"] == 63
+    largest = float(np.hypot(vectors[:, 2], vectors[:, 3]).max()) * field["mm_per_px"]
+    assert largest == pytest.approx(r.metrics["track.max_displacement_mm"]["value"], rel=1e-9)
+
+
+def test_recorded_frames_with_markers_give_heights_clouds_and_fields(source, tmp_path):
+    pipeline = str(source / "pipelines/gelsight_markers_from_images.yaml")
+    r = touchcloud.run(pipeline, out=str(tmp_path), outputs=["depth.height", "track.displacement"], every_iteration=True)
+    heights, fields = r.outputs["depth.height"], r.outputs["track.displacement"]
+    assert len(heights) == len(fields) == 3  # the sample's three frames, the loop ended on the last file
+    # checks: error: no frame stopped the run (the calibration was fitted with the dots masked)
+    assert r.metrics["depth.depth_warnings"]["value"] == 0 and r.metrics["depth.markers_masked"]["value"] >= 60
+    deepest = max(float(h["height_mm"].max()) for h in heights)
+    assert 0.5 < deepest < 1.0  # the ball pressed about 0.6 mm past first contact, on a 2.5 mm gel
+    for field in fields:
+        assert field["vectors_px"].shape[1] == 4 and field["vectors_px"].shape[0] >= 60
+    for i in range(3):
+        for name in (f"height_{i}.png", f"contact_{i}.png", f"contact_{i}.pcd", f"displacement_{i}.csv",
+                     f"displacement_{i}.png"):
+            assert (tmp_path / name).is_file(), name

@@ -26,6 +26,18 @@ inline simulation::Scene ball_scene() {
   return simulation::load_scene(source_dir() / "sample_clouds/gelsight_ball/scene.yaml");
 }
 
+// The shipped ball scene with other `effects` (a YAML list), written into `dir`.
+inline simulation::Scene ball_scene_with(const TempDir& dir, const std::string& effects,
+                                         const std::string& name = "ball.yaml") {
+  const auto ball = source_dir() / "sample_clouds/gelsight_ball";
+  std::string text = read_file(ball / "scene.yaml");
+  text = text.substr(0, text.find("\neffects:") + 1) + "effects: " + effects + "\n";
+  const std::string mesh = "mesh: ball_cap.ply";
+  text.replace(text.find(mesh), mesh.size(), "mesh: " + (ball / "ball_cap.ply").string());
+  write_file(dir / name, text);
+  return simulation::load_scene(dir / name);
+}
+
 // Steps a touch at `xy` without a stable-contact verdict until the pad is
 // `travel_mm` past first contact.
 inline const simulation::TouchFrame& press_pad_into(simulation::GelSightSimulation& sim,

@@ -273,3 +273,53 @@ TEST(GelSightTruth, TheContactMaskIsTheThresholdOnTheTrueHeight) {
   for (std::size_t i = 0; i < t.points->size(); ++i)
     EXPECT_NEAR((*t.reference)[i].z - (*t.points)[i].z, t.displacement_mm[i], 1e-5);
 }
+
+TEST(GelSightEffects, MarkersAreDarkDotsOnTheGelThatMoveOutwardsFromAPress) {
+  TempDir dir;
+  GelSightSimulation plain(ball_scene_with(dir, "[contact, render]", "p.yaml"), 1);
+  GelSightSimulation dotted(
+      ball_scene_with(dir, "[contact, render, {markers: {pitch_mm: 1.5, diameter_mm: 0.45, darkness: 0.6}}]", "m.yaml"), 1);
+  EXPECT_THROW(plain.markers_rest_px(), InputError);
+  // At rest: a 12 x 9 grid at 25 px pitch around the image centre, each dot
+  // 7.5 px across; only the dots' pixels change, a dot's centre to 0.4 of the gel.
+  const auto& rest = dotted.markers_rest_px();
+  ASSERT_EQ(rest.size(), 13u * 9u);
+  EXPECT_DOUBLE_EQ(dotted.marker_diameter_px(), 7.5);
+  for (auto* sim : {&plain, &dotted}) sim->step({0, 0}, false);  // at the safe height
+  const cv::Mat gel = plain.render_reference().image, reference = dotted.render_reference().image;
+  cv::Mat dots(gel.size(), CV_8UC1, cv::Scalar(0));
+  for (const auto& c : rest) cv::circle(dots, cv::Point(cvRound(c.x), cvRound(c.y)), 6, cv::Scalar(255), cv::FILLED);
+  cv::Mat changed;
+  cv::absdiff(gel, reference, changed);
+  cv::cvtColor(changed, changed, cv::COLOR_BGR2GRAY);
+  EXPECT_EQ(cv::countNonZero((changed > 0) & ~dots), 0);
+  const cv::Point centre(cvRound(rest[60].x), cvRound(rest[60].y));
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(reference.at<cv::Vec3b>(centre)[c], 0.4 * gel.at<cv::Vec3b>(centre)[c], 1.0);
+
+  // Pressed: the dots near the cap move outwards (the slope's downhill),
+  // those on the flat gel stay where they were, and the image is dark where they are now.
+  for (auto* sim : {&plain, &dotted}) press_pad_into(*sim, {0, 0}, 0.5);
+  const std::vector<cv::Point2d> now = dotted.markers_now_px();
+  const cv::Point2d axis(159.5, 119.5);
+  int moved = 0;
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    const cv::Point2d shift = now[i] - rest[i], out = rest[i] - axis;
+    if (cv::norm(out) > 60) {
+      EXPECT_EQ(shift, cv::Point2d(0, 0)) << i;
+      continue;
+    }
+    if (cv::norm(shift) < 0.5) continue;
+    ++moved;
+    EXPECT_GT(shift.dot(out), 0) << i;
+  }
+  EXPECT_GE(moved, 4);
+  const cv::Mat pressed = dotted.render().image, bare = plain.render().image;
+  for (const auto& c : now) {
+    const cv::Point p(cvRound(c.x), cvRound(c.y));
+    EXPECT_LT(cv::norm(pressed.at<cv::Vec3b>(p), cv::NORM_L1), 0.6 * cv::norm(bare.at<cv::Vec3b>(p), cv::NORM_L1));
+  }
+  // A GelStereo's markers are its gel's layout, not this effect.
+  const std::string stereo = input_error([&] { plane_scene(dir, "[contact, render, markers]"); });
+  EXPECT_NE(stereo.find("'markers' applies to sensor.family gelsight"), std::string::npos) << stereo;
+}

@@ -6,7 +6,8 @@ const std::array<Effect, kEffectCount>& all_effects() {
   static const std::array<Effect, kEffectCount> effects{
       Effect::Contact, Effect::ElasticSpread, Effect::Refraction,    Effect::LensDistortion, Effect::Render,
       Effect::PixelNoise, Effect::Blur,       Effect::MarkerDropout, Effect::PoseNoise,
-      Effect::Vignetting, Effect::ExposureDrift};
+      Effect::Vignetting, Effect::ExposureDrift,
+      Effect::GelMarkers};
   return effects;
 }
 
@@ -23,6 +24,7 @@ const char* to_string(Effect effect) {
     case Effect::PoseNoise: return "pose_noise";
     case Effect::Vignetting: return "vignetting";
     case Effect::ExposureDrift: return "exposure_drift";
+    case Effect::GelMarkers: return "markers";
   }
   return "?";
 }

@@ -58,6 +58,14 @@ void read_effect(Effect effect, const YAML::Node& params, Scene& scene, ConfigPr
       p.exposure_gain = f.number("gain", p.exposure_gain, FieldRule::Positive);
       p.exposure_offset_grey = f.number("offset_grey", p.exposure_offset_grey);
       if (std::abs(p.exposure_offset_grey) > 255) f.error("offset_grey", "must be within -255 to 255");
+    case Effect::GelMarkers:
+      p.gel_marker_pitch_mm = f.number("pitch_mm", p.gel_marker_pitch_mm, FieldRule::Positive);
+      p.gel_marker_diameter_mm = f.number("diameter_mm", p.gel_marker_diameter_mm, FieldRule::Positive);
+      p.gel_marker_darkness = f.number("darkness", p.gel_marker_darkness, FieldRule::Probability);
+      p.gel_marker_shift_per_slope_mm =
+          f.number("shift_per_slope_mm", p.gel_marker_shift_per_slope_mm, FieldRule::NonNegative);
+      if (p.gel_marker_diameter_mm >= p.gel_marker_pitch_mm)
+        f.error("diameter_mm", "must be less than pitch_mm (dots that do not touch)");
       break;
     case Effect::Contact:
     case Effect::Refraction:
@@ -134,6 +142,9 @@ Scene load_scene(const fs::path& file) {
           problems.add(effects, std::string("effects: '") + to_string(e) +
                                     "' applies to sensor.family gelsight only (the GelStereo's render effect has its "
                                     "own vignetting); remove it");
+    if (scene.family == sensor::SensorFamily::GelStereo && scene.effects.has(Effect::GelMarkers))
+      problems.add(effects, "effects: 'markers' applies to sensor.family gelsight (dots printed on its flat gel); a "
+                            "GelStereo's markers are its gel's marker layout, drawn by 'render'");
   }
   problems.throw_if_any();
   return scene;

@@ -89,6 +89,7 @@ void write_photometric_calibration(const PhotometricCalibration& c, const fs::pa
       << "  samples: " << c.samples << "\n"
       << "  rms_gradient: " << c.rms_gradient << "\n"
       << "  max_slope: " << c.max_slope << "\n";
+  if (c.markers_masked) out << "  markers: masked\n";  // absent: fitted to a gel without markers
   for (auto [name, v] : {std::pair{"gx", &c.gx}, {"gy", &c.gy}}) {
     out << "  " << name << ": [";
     for (std::size_t i = 0; i < v->size(); ++i) out << (i ? ", " : "") << (*v)[i];
@@ -119,6 +120,10 @@ PhotometricCalibration load_photometric_calibration(const fs::path& file) {
     c.samples = f.integer("samples", 0, 0);
     c.rms_gradient = f.number("rms_gradient", 0, config::FieldRule::NonNegative);
     c.max_slope = f.number("max_slope", 0, config::FieldRule::NonNegative);
+    const std::string markers = f.text("markers", "none");
+    if (markers != "none" && markers != "masked")
+      f.error("markers", "is '" + markers + "'; must be none (a gel without markers) or masked");
+    c.markers_masked = markers == "masked";
     const std::size_t terms = PhotometricCalibration::monomial_count(std::min(c.degree, 7));
     c.gx = f.numbers("gx", std::vector<double>(terms, 0.0), terms);
     c.gy = f.numbers("gy", std::vector<double>(terms, 0.0), terms);

@@ -24,7 +24,9 @@ struct DepthCheckLimits {
   double max_exposure_grey = 8;     // mean over the flat pixels and the channels
 };
 
-enum class DepthProblem { HeightOverGel, ContactEverywhere, ExposureMismatch };
+// MarkersNotCalibrated: marker dots in the image, but a calibration fitted to
+// a gel without markers (found by the stage, which has the markers).
+enum class DepthProblem { HeightOverGel, ContactEverywhere, ExposureMismatch, MarkersNotCalibrated };
 
 struct DepthFinding {
   DepthProblem problem;

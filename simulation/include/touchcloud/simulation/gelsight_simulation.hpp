@@ -4,9 +4,11 @@
 // apex) and computes the pad's height map (the contact decides the motion).
 // Everything else is computed only when asked for:
 //
-//   render()            the colour image (`render`; vignetting, exposure_drift,
-//                       blur, pixel_noise, in the order light meets them)
-//   render_reference()  the no-contact image (vignetting only: no drift, no noise)
+//   render()            the colour image (`render`; markers, vignetting,
+//                       exposure_drift, blur, pixel_noise, in the order light meets them)
+//   render_reference()  the no-contact image (markers at rest, vignetting; no drift, no noise)
+//   markers_rest_px()   the marker dots' centres at rest and on the last
+//   markers_now_px()    frame's pressed gel (`markers`; the truth of tracking)
 //   height_truth()      the height map with a contact mask from a threshold
 //                       on it (the TactileDataset's ground truth)
 //   truth_tactile()     the pressed pad's surface on a pixel grid as a
@@ -18,6 +20,7 @@
 #include <optional>
 
 #include "touchcloud/simulation/gel/flat_pad_contact.hpp"
+#include "touchcloud/simulation/render/gel_markers.hpp"
 #include "touchcloud/simulation/render/image_noise.hpp"
 #include "touchcloud/simulation/render/photometric_renderer.hpp"
 #include "touchcloud/simulation/touch_simulation.hpp"
@@ -40,6 +43,10 @@ class GelSightSimulation final : public TouchSimulation {
   MonoColourFrame render();
   MonoColourFrame render_reference();
   HeightMap height_truth(double contact_threshold_mm) const;
+  // InputError unless the scene names `markers`.
+  const std::vector<cv::Point2d>& markers_rest_px() const;
+  std::vector<cv::Point2d> markers_now_px() const;
+  double marker_diameter_px() const;
   TactileCloud truth_tactile(int stride_px) const;
   // The pressed pad's surface on the same grid in the base frame (true pose).
   CloudPtr truth_base(int stride_px) const;
@@ -55,6 +62,8 @@ class GelSightSimulation final : public TouchSimulation {
   PhotometricRenderer renderer_;
   std::unique_ptr<ImageNoise> image_noise_;
   cv::Mat lens_fall_;  // CV_32FC3, with vignetting only
+  std::optional<GelMarkers> markers_;  // when the scene names `markers`
+  const GelMarkers& require_markers() const;
   PadPress pad_;  // of the last frame
 };
 

@@ -8,7 +8,10 @@
 // dozen numbers.
 //
 // The file (YAML) names the sensor and the image size it was made for;
-// photometric_depth refuses frames of another sensor or size.
+// photometric_depth refuses frames of another sensor or size. `markers:
+// masked` says it was fitted to images whose marker dots were masked and
+// filled; a file without it was fitted to a gel without markers, and
+// photometric_depth warns (or stops) when it finds markers in the images.
 #pragma once
 
 #include <filesystem>
@@ -32,6 +35,7 @@ struct PhotometricCalibration {
   long samples = 0;           // pixels the fit used
   double rms_gradient = 0;    // root-mean-square residual of the fit (both components)
   double max_slope = 0;       // steepest gradient among the samples
+  bool markers_masked = false;  // fitted with the gel's marker dots masked; false: a gel without markers
 
   // Monomials r^i g^j b^k with i + j + k <= degree.
   static int monomial_count(int degree);

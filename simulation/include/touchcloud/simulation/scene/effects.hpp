@@ -22,8 +22,9 @@ enum class Effect {
   PoseNoise,       // the reported sensor pose is perturbed (the truth is not)
   Vignetting,      // GelSight: the lens darkens the whole image, contact shading included, towards the corners
   ExposureDrift,   // GelSight: frames are taken at another gain and offset than the no-contact reference
+  GelMarkers,      // GelSight-type: dark dots printed on the gel, moving with it (render/gel_markers.hpp)
 };
-inline constexpr std::size_t kEffectCount = 11;
+inline constexpr std::size_t kEffectCount = 12;
 
 const std::array<Effect, kEffectCount>& all_effects();
 const char* to_string(Effect effect);               // "elastic_spread"
@@ -71,6 +72,11 @@ struct EffectParameters {
   // no-contact image and the presses); the reference keeps its own.
   double exposure_gain = 1.01;
   double exposure_offset_grey = 1.0;
+  // markers (GelSight-type): see render/gel_markers.hpp
+  double gel_marker_pitch_mm = 2.0;
+  double gel_marker_diameter_mm = 0.5;
+  double gel_marker_darkness = 0.7;
+  double gel_marker_shift_per_slope_mm = 0.5;
 };
 
 }  // namespace touchcloud::simulation

@@ -121,7 +121,7 @@ TEST(MarkerDetectionOneCamera, BadImagesAreRefusedNamingTheInput) {
 TEST_F(MarkerDetectionStage, ExactlyOneOfFrameAndImageIsWired) {
   auto none = errors("stages:\n  - id: detect\n    plugin: marker_detection\n");
   ASSERT_EQ(none.size(), 1u);
-  EXPECT_TRUE(test::mentions(none[0], "is missing its images: wire one of its inputs 'frame' or 'image'"))
+  EXPECT_TRUE(test::mentions(none[0], "is missing its images: wire one of its inputs 'frame' or 'image' or 'colour'"))
       << none[0].str();
   EXPECT_EQ(none[0].where.line, 2);
   cv::imwrite((dir_ / "dots.png").string(), three_dots());
@@ -132,8 +132,8 @@ TEST_F(MarkerDetectionStage, ExactlyOneOfFrameAndImageIsWired) {
       "  - id: read\n    plugin: image_reader\n    params: {path: dots.png}\n"
       "  - id: detect\n    plugin: marker_detection\n    inputs: {frame: sim.frame, image: read.image}\n");
   ASSERT_EQ(both.size(), 1u);
-  EXPECT_TRUE(test::mentions(both[0], "takes one of its inputs 'frame' or 'image' (its images), but 'frame' and "
-                                      "'image' are wired"))
+  EXPECT_TRUE(test::mentions(both[0], "takes one of its inputs 'frame' or 'image' or 'colour' (its images), but "
+                                      "'frame' and 'image' are wired"))
       << both[0].str();
 }
 

@@ -4,6 +4,9 @@
 // PNG files: the calibration it writes reconstructs held-out presses of other
 // indenters (balls of 3 and 6 mm, a rod, raised letters) close to their true
 // height maps, and the ball's radius comes back from the reconstructed caps.
+// The same with marker dots printed on the gel (the simulator's `markers`),
+// masked and filled in the calibration (`calibrate.markers=mask`) and in the
+// reconstructions.
 #include <cmath>
 #include <iostream>
 
@@ -12,6 +15,7 @@
 
 #include "test_support.hpp"
 #include "touchcloud/imaging/ball_press.hpp"
+#include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/imaging/photometric_depth_solver.hpp"
 #include "touchcloud/simulation/gelsight_press.hpp"
 #include "touchcloud/simulation/objects/indenters.hpp"
@@ -27,7 +31,7 @@ constexpr double kBallRadiusMm = 4.0;
 // named from the source tree; the robot descends at its slow speed all the
 // way, so a press goes no more than 0.04 mm past the depth asked for (raised
 // letters 0.35 mm high are pressed without the gel reaching the table).
-simulation::Scene realistic_scene(const test::TempDir& dir) {
+simulation::Scene realistic_scene(const test::TempDir& dir, bool markers) {
   std::string text = test::read_file(test::source_dir() / "sample_clouds/gelsight_ball/ball_presses/scene.yaml");
   const auto mesh = text.find("../ball_cap.ply");
   text.replace(mesh, std::string("../ball_cap.ply").size(),
@@ -36,7 +40,8 @@ simulation::Scene realistic_scene(const test::TempDir& dir) {
   text.replace(approach, std::string("approach_speed_mm_s: 10").size(), "approach_speed_mm_s: 0");
   text = text.substr(0, text.find("effects:")) +
          "effects:\n  - contact\n  - render\n  - pixel_noise: {sigma_grey: 1.5}\n"
-         "  - vignetting: {fall_off: 0.15}\n  - exposure_drift: {gain: 1.015, offset_grey: 1.5}\n";
+         "  - vignetting: {fall_off: 0.15}\n  - exposure_drift: {gain: 1.015, offset_grey: 1.5}\n" +
+         (markers ? "  - markers: {pitch_mm: 2.0, diameter_mm: 0.5, darkness: 0.7, shift_per_slope_mm: 0.5}\n" : "");
   test::write_file(dir / "scene.yaml", text);
   return simulation::load_scene(dir / "scene.yaml");
 }
@@ -46,13 +51,68 @@ cv::Mat written_and_read(const cv::Mat& image, const fs::path& file) {
   return cv::imread(file.string(), cv::IMREAD_COLOR);
 }
 
+// A reconstructed press: its height against the truth where the true height
+// is above 0.02 mm (the contact; the letters' blurred edges fade out below
+// that).
+struct Reconstruction {
+  cv::Mat image, height_mm;
+  HeightMap truth;
+  double rmse_mm = 0;
+  long contact_px = 0;
+};
+
+void score_against_truth(Reconstruction& r, const std::string& name) {
+  double squared = 0;
+  for (int v = 0; v < r.height_mm.rows; ++v)
+    for (int u = 0; u < r.height_mm.cols; ++u)
+      if (r.truth.height_mm.at<float>(v, u) > 0.02f) {
+        const double e = r.height_mm.at<float>(v, u) - r.truth.height_mm.at<float>(v, u);
+        squared += e * e;
+        ++r.contact_px;
+      }
+  r.rmse_mm = std::sqrt(squared / std::max(r.contact_px, 1L));
+  double deepest = 0;
+  cv::minMaxLoc(r.truth.height_mm, nullptr, &deepest);
+  std::cout << name << ": height RMSE " << r.rmse_mm << " mm over " << r.contact_px << " contact px (deepest "
+            << deepest << " mm)\n";
+}
+
+// Tolerances per case, from what was measured (see the tests): without
+// dots about twice the errors; with dots (0.5 mm, 2 mm apart) the fill
+// around a dot on a contact's rim flattens the rim, and the errors grow:
+// caps 0.094 / 0.097 mm, ball radius 3.70 / 3.83 mm, held-out heights
+// 0.151 mm (3 mm ball), 0.032 (6 mm ball), 0.013 (rod), 0.016 (letters),
+// radii from the caps 22 % (3 mm) and 8 % (6 mm) small. With the dots left
+// in (no mask anywhere) the same presses gave smaller errors (caps 0.071 /
+// 0.079 mm, held-out heights 0.006-0.010 mm): on these rendered dots the
+// fill costs more at the rims than the ink it removes; the mask's own
+// benefit is at the dots (tests/plugins/photometric_depth/test_marker_mask).
+struct MarkersOff {
+  static constexpr bool on = false;
+  static constexpr double cap_rmse_mm = 0.1, ball_radius_mm = 0.15, height_rmse_mm = 0.03, radius_share = 0.05;
+};
+struct MarkersOn {
+  static constexpr bool on = true;
+  static constexpr double cap_rmse_mm = 0.15, ball_radius_mm = 0.45, height_rmse_mm = 0.2, radius_share = 0.3;
+};
+
+template <typename Markers>
 class CalibrateFromBallPresses : public ::testing::Test {
  protected:
+  // The dots found and filled in a press and its background, as
+  // photometric_depth's `markers: mask` does; the images as they are without.
+  static std::pair<cv::Mat, cv::Mat> filled(const cv::Mat& image, const cv::Mat& background) {
+    if (!Markers::on) return {image, background};
+    imaging::MarkerMaskParameters stage_defaults{imaging::MarkerHandling::Mask, {3, 12}, 20.0};
+    const imaging::FilledPair f = stage_defaults.make_fill()->fill(image, background);
+    return {f.image.clone(), f.reference.clone()};
+  }
+
   // Eight presses of the 4 mm ball over the pad and the background, as PNG
   // files; the shipped pipeline run on them.
   static void SetUpTestSuite() {
     dir_ = new test::TempDir;
-    simulation::GelSightSimulation sim(realistic_scene(*dir_), 47);
+    simulation::GelSightSimulation sim(realistic_scene(*dir_, Markers::on), 47);
     fs::create_directories(*dir_ / "presses");
     int k = 0;
     for (const auto& xy : simulation::ball_press_targets(sim.sensor(), 8, 2.6))
@@ -60,10 +120,11 @@ class CalibrateFromBallPresses : public ::testing::Test {
                        *dir_ / "presses" / ("press_" + std::to_string(++k) + ".png"));
     background_ = new cv::Mat(written_and_read(sim.render_reference().image, *dir_ / "background.png"));
     PluginRegistry registry;
+    std::vector<Override> overrides = {{"background.path", (*dir_ / "background.png").string()},
+                                       {"read.path", (*dir_ / "presses/*.png").string()}};
+    if (Markers::on) overrides.push_back({"calibrate.markers", "mask"});
     Pipeline p = Pipeline::load(test::source_dir() / "pipelines/calibrate_gelsight_from_ball_presses.yaml",
-                                {{"background.path", (*dir_ / "background.png").string()},
-                                 {"read.path", (*dir_ / "presses/*.png").string()}},
-                                registry);
+                                overrides, registry);
     RunOptions o;
     o.quiet = true;
     o.out_dir = *dir_ / "out";
@@ -77,38 +138,19 @@ class CalibrateFromBallPresses : public ::testing::Test {
   static double metric(const std::string& name) { return record_->metrics.at("calibrate." + name).values.back(); }
 
   // A held-out press of `object` at the pad's centre, `travel_mm` deep,
-  // through a PNG file and the calibration: its height against the truth
-  // where the true height is above 0.02 mm (the contact; the letters' blurred
-  // edges fade out below that).
-  struct Reconstruction {
-    cv::Mat image, height_mm;
-    HeightMap truth;
-    double rmse_mm = 0;
-    long contact_px = 0;
-  };
+  // through a PNG file and the calibration, against its truth.
   static Reconstruction reconstruct(std::shared_ptr<const simulation::ObjectSurface> object, double travel_mm,
                                     const std::string& name) {
-    simulation::GelSightSimulation sim(realistic_scene(*dir_), 48, std::move(object));
+    simulation::GelSightSimulation sim(realistic_scene(*dir_, Markers::on), 48, std::move(object));
     auto press = simulation::press_and_render(sim, {0, 0}, travel_mm);
     Reconstruction r;
     r.image = written_and_read(press.image.image, *dir_ / (name + ".png"));
     imaging::PhotometricDepthSolver solver(
         sensor::load_photometric_calibration(*dir_ / "out/photometric_calibration.yaml"), imaging::DepthOptions{});
-    r.height_mm = solver.solve(r.image, *background_).height_mm;
+    const auto [image, background] = filled(r.image, *background_);
+    r.height_mm = solver.solve(image, background).height_mm;
     r.truth = press.truth;
-    double squared = 0;
-    for (int v = 0; v < r.height_mm.rows; ++v)
-      for (int u = 0; u < r.height_mm.cols; ++u)
-        if (r.truth.height_mm.at<float>(v, u) > 0.02f) {
-          const double e = r.height_mm.at<float>(v, u) - r.truth.height_mm.at<float>(v, u);
-          squared += e * e;
-          ++r.contact_px;
-        }
-    r.rmse_mm = std::sqrt(squared / std::max(r.contact_px, 1L));
-    double deepest = 0;
-    cv::minMaxLoc(r.truth.height_mm, nullptr, &deepest);
-    std::cout << name << ": height RMSE " << r.rmse_mm << " mm over " << r.contact_px << " contact px (deepest "
-              << deepest << " mm)\n";
+    score_against_truth(r, name);
     return r;
   }
 
@@ -116,13 +158,21 @@ class CalibrateFromBallPresses : public ::testing::Test {
   static cv::Mat* background_;
   static RunRecord* record_;
 };
-test::TempDir* CalibrateFromBallPresses::dir_ = nullptr;
-cv::Mat* CalibrateFromBallPresses::background_ = nullptr;
-RunRecord* CalibrateFromBallPresses::record_ = nullptr;
+template <typename Markers>
+test::TempDir* CalibrateFromBallPresses<Markers>::dir_ = nullptr;
+template <typename Markers>
+cv::Mat* CalibrateFromBallPresses<Markers>::background_ = nullptr;
+template <typename Markers>
+RunRecord* CalibrateFromBallPresses<Markers>::record_ = nullptr;
+
+using MarkerCases = ::testing::Types<MarkersOff, MarkersOn>;
+TYPED_TEST_SUITE(CalibrateFromBallPresses, MarkerCases);
 
 }  // namespace
 
-TEST_F(CalibrateFromBallPresses, FindsEveryPressAndGivesTheBallsRadiusBack) {
+TYPED_TEST(CalibrateFromBallPresses, FindsEveryPressAndGivesTheBallsRadiusBack) {
+  const auto metric = [](const std::string& name) { return TestFixture::metric(name); };
+  auto* dir_ = TestFixture::dir_;
   EXPECT_EQ(metric("presses"), 8);
   EXPECT_EQ(metric("presses_held_out"), 2);
   EXPECT_EQ(metric("frames_skipped"), 0);
@@ -132,15 +182,19 @@ TEST_F(CalibrateFromBallPresses, FindsEveryPressAndGivesTheBallsRadiusBack) {
   // Measured: 0.047 mm fitted and 0.058 mm held out on caps about 0.7 mm
   // deep, radius 3.997 and 4.075 mm (the outer presses, where vignetting dims
   // the contact most, are the worst). Tolerances: about twice the errors.
-  EXPECT_LT(metric("cap_rmse_mm"), 0.1);
-  EXPECT_LT(metric("holdout_cap_rmse_mm"), 0.1);
-  EXPECT_NEAR(metric("ball_radius_fit_mm"), kBallRadiusMm, 0.15);
-  EXPECT_NEAR(metric("holdout_ball_radius_fit_mm"), kBallRadiusMm, 0.15);
+  EXPECT_LT(metric("cap_rmse_mm"), TypeParam::cap_rmse_mm);
+  EXPECT_LT(metric("holdout_cap_rmse_mm"), TypeParam::cap_rmse_mm);
+  EXPECT_NEAR(metric("ball_radius_fit_mm"), kBallRadiusMm, TypeParam::ball_radius_mm);
+  EXPECT_NEAR(metric("holdout_ball_radius_fit_mm"), kBallRadiusMm, TypeParam::ball_radius_mm);
   EXPECT_TRUE(fs::exists(dir_->path() / "out/ball_presses.csv"));
   EXPECT_TRUE(fs::exists(dir_->path() / "out/ball_presses.png"));
 }
 
-TEST_F(CalibrateFromBallPresses, ReconstructsHeldOutIndentersWithinTolerance) {
+TYPED_TEST(CalibrateFromBallPresses, ReconstructsHeldOutIndentersWithinTolerance) {
+  const auto reconstruct = [](auto object, double travel, const std::string& name) {
+    return TestFixture::reconstruct(std::move(object), travel, name);
+  };
+  const cv::Mat* background_ = TestFixture::background_;
   // Measured height RMSE in the contact: 0.010 mm (3 mm ball), 0.013 mm
   // (6 mm ball), 0.006 mm (rod), 0.002 mm (letters), on contacts 0.32-0.68 mm
   // deep at the pad's centre; the tolerance, 0.03 mm (under 10 % of the
@@ -150,17 +204,18 @@ TEST_F(CalibrateFromBallPresses, ReconstructsHeldOutIndentersWithinTolerance) {
   for (const auto& [radius, travel] : {std::pair{3.0, 0.5}, std::pair{6.0, 0.6}}) {
     const auto r = reconstruct(std::make_shared<simulation::BallIndenter>(radius, Eigen::Vector2d::Zero(), 8.0),
                                travel, "ball_" + std::to_string(int(radius)));
-    EXPECT_LT(r.rmse_mm, 0.03) << "ball of " << radius << " mm";
-    const auto found = imaging::find_ball_press(r.image, *background_, 8, radius, 0.06);
+    EXPECT_LT(r.rmse_mm, TypeParam::height_rmse_mm) << "ball of " << radius << " mm";
+    const auto [image, background] = TestFixture::filled(r.image, *background_);
+    const auto found = imaging::find_ball_press(image, background, 8, radius, 0.06);
     ASSERT_TRUE(found.circle) << found.why;
     const auto cap = imaging::score_ball_cap(r.height_mm, *found.circle, radius, 0.06);
     std::cout << "  radius from its cap " << cap.fitted_radius_mm << " mm\n";
-    EXPECT_NEAR(cap.fitted_radius_mm, radius, 0.05 * radius) << "ball of " << radius << " mm";
+    EXPECT_NEAR(cap.fitted_radius_mm, radius, TypeParam::radius_share * radius) << "ball of " << radius << " mm";
   }
   const auto rod = reconstruct(
       std::make_shared<simulation::RodIndenter>(2.5, Eigen::Vector2d(-3, 0), Eigen::Vector2d(3, 0), 8.0), 0.5, "rod");
-  EXPECT_LT(rod.rmse_mm, 0.03);
+  EXPECT_LT(rod.rmse_mm, TypeParam::height_rmse_mm);
   const auto text = reconstruct(
       std::make_shared<simulation::TextRelief>("TC", 6.0, 0.6, 0.35, 0.25, Eigen::Vector2d::Zero()), 0.25, "text");
-  EXPECT_LT(text.rmse_mm, 0.03);
+  EXPECT_LT(text.rmse_mm, TypeParam::height_rmse_mm);
 }

@@ -6,6 +6,12 @@
 //                             copy before each touch is not timed)
 //   BM_ImplicitGridMean/n     the mean on a 32^3 grid from n points (what the
 //                             stage meshes after each touch, at cells: 31)
+//   BM_SparseTouchUpdate/n    the same touch added to the sparse form
+//                             (inducing sites 8 mm apart, the default) of
+//                             n training points
+//   BM_SparseGridMean/n/t     the sparse form's mean on a 32^3 grid, on t threads
+//   BM_SparseSurfaceVariance/n  its variance at 2,000 points on the sphere
+//                             (what a next-touch choice scores footprints by)
 //   BM_LevelSetMesh/c         VTK flying edges on a c^3 grid of a sphere's
 //                             signed distance (VTK's SMP backend, TBB on
 //                             Debian, uses the cores the process may: run
@@ -18,6 +24,7 @@
 
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
+#include "touchcloud/gp/sparse_implicit_surface.hpp"
 
 using namespace touchcloud;
 
@@ -71,6 +78,51 @@ void BM_ImplicitGridMean(benchmark::State& state) {
   state.counters["grid_points"] = static_cast<double>(q.rows());
 }
 BENCHMARK(BM_ImplicitGridMean)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+
+gp::SparseImplicitSurface sparse_model_of(Eigen::Index points, int touches_total) {
+  gp::ImplicitSurfaceOptions o;
+  o.kernel = gp::ImplicitKernelKind::matern52;
+  o.reselect_growth = 1e6;
+  gp::SparseImplicitSurface s(o, {});
+  for (int i = 0; s.training_size() < points; ++i) s.add(sphere_touch(i, touches_total));
+  return s;
+}
+
+void BM_SparseTouchUpdate(benchmark::State& state) {
+  const gp::SparseImplicitSurface base = sparse_model_of(state.range(0), 400);
+  const gp::ImplicitTouch touch = sphere_touch(399, 400);
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::optional<gp::SparseImplicitSurface> s(base);
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(s->add(touch));
+    state.PauseTiming();
+    s.reset();
+    state.ResumeTiming();
+  }
+  state.counters["training_points"] = static_cast<double>(base.training_size());
+  state.counters["inducing_points"] = static_cast<double>(base.inducing_size());
+}
+BENCHMARK(BM_SparseTouchUpdate)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+void BM_SparseGridMean(benchmark::State& state) {
+  const gp::SparseImplicitSurface s = sparse_model_of(state.range(0), 400);
+  const gp::SampleGrid grid = gp::grid_around(s.contact_points(), 5.0, 31);
+  const Eigen::MatrixX3d q = grid.sample_points();
+  for (auto _ : state) benchmark::DoNotOptimize(s.mean(q, static_cast<int>(state.range(1))));
+  state.counters["grid_points"] = static_cast<double>(q.rows());
+  state.counters["inducing_points"] = static_cast<double>(s.inducing_size());
+}
+BENCHMARK(BM_SparseGridMean)->Args({10000, 1})->Args({10000, 2})->Unit(benchmark::kMillisecond);
+
+void BM_SparseSurfaceVariance(benchmark::State& state) {
+  const gp::SparseImplicitSurface s = sparse_model_of(state.range(0), 400);
+  Eigen::MatrixX3d q(2000, 3);
+  for (int i = 0; i < 2000; ++i) q.row(i) = sphere_touch(i, 2000).points_mm.row(0);
+  for (auto _ : state) benchmark::DoNotOptimize(s.variance(q));
+  state.counters["inducing_points"] = static_cast<double>(s.inducing_size());
+}
+BENCHMARK(BM_SparseSurfaceVariance)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 void BM_LevelSetMesh(benchmark::State& state) {
   const int cells = static_cast<int>(state.range(0));

@@ -15,8 +15,14 @@
 // The palm's normal comes from the tactile cloud's sensor pose (its z axis:
 // the palm presses along -z); without the tactile input each touch's normal
 // is its patch's plane normal, turned away from the centroid of all points.
+//
+// The `surface` output is the model as a press from above meets it
+// (top_surface.hpp), for next_touch to choose where it is least certain.
+#include <memory>
 #include <optional>
 #include <variant>
+
+#include "top_surface.hpp"
 
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
@@ -41,9 +47,11 @@ class GpisSurface final : public Stage {
   std::int64_t samples_ = 20000;
   std::optional<std::string> mesh_path_;
   std::int64_t threads_ = 0;
-  std::variant<std::monostate, gp::ImplicitSurface, gp::SparseImplicitSurface> model_;
+  // Shared with the `surface` output until the next touch.
+  std::variant<std::shared_ptr<gp::ImplicitSurface>, std::shared_ptr<gp::SparseImplicitSurface>> model_;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
+  SurfaceModelPtr surface_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("form", form_, ImplicitForm::exact, {{"exact", ImplicitForm::exact}, {"sparse", ImplicitForm::sparse}})
@@ -92,21 +100,17 @@ class GpisSurface final : public Stage {
   void on_configure(RunContext&) override {
     options_.max_training_points = exact_max_points_;
     if (form_ == ImplicitForm::exact)
-      model_.emplace<gp::ImplicitSurface>(options_);
+      model_ = std::make_shared<gp::ImplicitSurface>(options_);
     else
-      model_.emplace<gp::SparseImplicitSurface>(options_, sparse_);
-  }
-  // Calls f with the model of either form.
-  template <class F>
-  decltype(auto) with_model(F&& f) {
-    if (auto* exact = std::get_if<gp::ImplicitSurface>(&model_)) return f(*exact);
-    return f(std::get<gp::SparseImplicitSurface>(model_));
+      model_ = std::make_shared<gp::SparseImplicitSurface>(options_, sparse_);
   }
 
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.optional_input<TactileCloudPtr>("tactile", "the touch's tactile cloud: its sensor pose gives the palm's normal");
     ports.output<CloudConstPtr>("cloud", "points sampled on the zero level set, base frame, mm");
+    ports.output<SurfaceModelPtr>("surface", "the implicit surface as a press from above meets it: its highest "
+                                             "zero crossing over each (x, y) and the variance there, for next_touch");
     ports.metric("training_points", "points", "contact and signed points the GP is fitted to");
     ports.metric("update_path", "", "how the model was updated: 1 bordered Cholesky update, 2 refactorised, "
                  "3 hyperparameters selected");
@@ -122,21 +126,30 @@ class GpisSurface final : public Stage {
   }
 
   template <class Model>
-  void update_and_mesh(Model& model, const gp::ImplicitTouch& touch, RunContext& ctx) {
-    const gp::ImplicitUpdate update = model.add(touch);  // InputError names a touch it refuses
+  void update_and_mesh(std::shared_ptr<Model>& model, const gp::ImplicitTouch& touch, StageIO& io, RunContext& ctx) {
+    // A model handed out as `surface` does not change: the next touch goes to
+    // a copy while another stage still holds it.
+    surface_.reset();
+    if (model.use_count() > 1) model = std::make_shared<Model>(*model);
+    const gp::ImplicitUpdate update = model->add(touch);  // InputError names a touch it refuses
     static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
     ctx.metric("update_path", kPath[static_cast<int>(update.path)]);
     if (update.lml) ctx.metric("lml", *update.lml);
     ctx.metric("training_points", static_cast<double>(update.training_points), "points");
-    ctx.metric("scale_mm", model.hyperparameters().lengthscale_mm, "mm");
-    ctx.metric("signal_variance_mm2", model.hyperparameters().signal_variance_mm2, "mm^2");
-    ctx.metric("noise_variance_mm2", model.hyperparameters().noise_variance_mm2, "mm^2");
+    ctx.metric("scale_mm", model->hyperparameters().lengthscale_mm, "mm");
+    ctx.metric("signal_variance_mm2", model->hyperparameters().signal_variance_mm2, "mm^2");
+    ctx.metric("noise_variance_mm2", model->hyperparameters().noise_variance_mm2, "mm^2");
     ctx.metric("jitter_mm2", update.jitter_mm2, "mm^2");
 
-    const gp::SampleGrid grid = gp::grid_around(model.contact_points(), margin_mm_, static_cast<int>(cells_));
-    mesh_ = gp::zero_level_set(grid, model.mean(grid.sample_points(), static_cast<int>(threads_)));
+    const gp::SampleGrid grid = gp::grid_around(model->contact_points(), margin_mm_, static_cast<int>(cells_));
+    mesh_ = gp::zero_level_set(grid, model->mean(grid.sample_points(), static_cast<int>(threads_)));
     if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
     ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
+    if (io.wants("surface")) {
+      // Down from the top of the meshed box, in 1 mm steps (then bisected).
+      const double top_z_mm = model->contact_points().col(2).maxCoeff() + margin_mm_;
+      surface_ = std::make_shared<ImplicitTopSurface<Model>>(model, top_z_mm, 1.0);
+    }
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -145,6 +158,7 @@ class GpisSurface final : public Stage {
     if (cloud->empty()) {  // a touch that added nothing: the surface stays as it was
       if (!cloud_) throw RunError("no touched points yet: the implicit surface needs a touch with points");
       io.output("cloud", cloud_);
+      if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
       return;
     }
     gp::ImplicitTouch touch;
@@ -155,19 +169,20 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = (*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
-    with_model([&](auto& model) { update_and_mesh(model, touch, ctx); });
+    std::visit([&](auto& model) { update_and_mesh(model, touch, io, ctx); }, model_);
     auto out = std::make_shared<PointCloud>();
     for (const Eigen::Vector3d& p : scoring::sample_surface(mesh_, static_cast<std::size_t>(samples_), ctx.rng()()))
       out->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
     cloud_ = out;
     io.output("cloud", cloud_);
+    if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
   }
 
   void on_finish(RunContext& ctx) override {
     if (mesh_.triangles.empty()) return;
     Eigen::MatrixX3d vertices(static_cast<Eigen::Index>(mesh_.vertices.size()), 3);
     for (std::size_t i = 0; i < mesh_.vertices.size(); ++i) vertices.row(static_cast<Eigen::Index>(i)) = mesh_.vertices[i];
-    const Eigen::VectorXd variance = with_model([&](const auto& model) { return model.variance(vertices); });
+    const Eigen::VectorXd variance = std::visit([&](const auto& model) { return model->variance(vertices); }, model_);
     ctx.metric("max_vertex_variance_mm2", variance.maxCoeff(), "mm^2");
     ctx.metric("mean_vertex_variance_mm2", variance.mean(), "mm^2");
     if (!mesh_path_) return;

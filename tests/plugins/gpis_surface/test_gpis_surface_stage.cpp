@@ -14,6 +14,7 @@
 #include "test_support.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 #include "touchcloud/types/point_cloud.hpp"
+#include "touchcloud/types/surface_model.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"
 
 using namespace touchcloud;
@@ -124,4 +125,42 @@ TEST_F(GpisSurfaceStage, ExactRefusesBeyondItsPointCount) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("sparse form"), std::string::npos) << e.what();
   }
+}
+
+// The `surface` output is the sphere as a press from above meets it: its top
+// over the sphere, the table (z = 0) beside it; the variance is lower where
+// the sphere was touched than over the table far from any touch, never
+// negative; and the view stays as it was while the stage takes more touches.
+TEST_F(GpisSurfaceStage, SurfaceOutIsTheSphereSeenFromAboveWithItsVariance) {
+  test::StageHarness h("gpis_surface", {{"cells", std::int64_t{24}}, {"samples", std::int64_t{500}},
+                                        {"reselect_growth", 1.0}});
+  h.configure();
+  const test::SphereObject sphere;  // centre (5, -3, 40), radius 20
+  const auto touches = sphere.touches(40);
+  SurfaceModelPtr first;
+  for (std::size_t i = 0; i < touches.size(); ++i) {
+    const auto outputs =
+        h.process({{"cloud", cloud_of(touches[i])}, {"tactile", tactile_for(touches[i])}}, {"cloud", "surface"});
+    if (i == 30) first = std::any_cast<SurfaceModelPtr>(outputs.at("surface"));
+    if (i + 1 == touches.size()) {
+      const SurfaceModelPtr top = std::any_cast<SurfaceModelPtr>(outputs.at("surface"));
+      Eigen::MatrixX2d xy(3, 2);
+      xy << 5, -3,   // over the centre: the top at z = 60
+          17, 9,     // over the sphere: z = 40 + sqrt(400 - 288)
+          60, 60;    // beside it: the table
+      const Eigen::VectorXd z = top->mean(xy);
+      EXPECT_NEAR(z(0), 60.0, 0.3);
+      EXPECT_NEAR(z(1), 40.0 + std::sqrt(112.0), 0.5);
+      EXPECT_EQ(z(2), 0.0);
+      const Eigen::VectorXd v = top->variance(xy);
+      EXPECT_GE(v.minCoeff(), 0.0);
+      EXPECT_LT(v(0), v(2));
+      ASSERT_TRUE(top->data_z_range_mm());
+      EXPECT_NEAR((*top->data_z_range_mm())[1], 60.0, 0.01);
+      EXPECT_EQ(top->training_size(), static_cast<std::size_t>(h.metric("training_points")));
+    }
+  }
+  // Taken after 31 touches, the first view still answers for those 31.
+  ASSERT_TRUE(first);
+  EXPECT_LT(first->training_size(), static_cast<std::size_t>(h.metric("training_points")));
 }

@@ -40,7 +40,7 @@ enum class ImplicitForm { exact, sparse };
 class GpisSurface final : public Stage {
   gp::ImplicitSurfaceOptions options_;
   ImplicitForm form_ = ImplicitForm::exact;
-  std::int64_t exact_max_points_ = 3000;
+  std::int64_t exact_max_points_ = 10000;
   gp::SparseImplicitOptions sparse_;
   std::int64_t cells_ = 64;
   double margin_mm_ = 5.0;
@@ -57,9 +57,10 @@ class GpisSurface final : public Stage {
     p.add("form", form_, ImplicitForm::exact, {{"exact", ImplicitForm::exact}, {"sparse", ImplicitForm::sparse}})
         .doc("exact: every training point in the GP (refused beyond exact_max_points); sparse: inducing points "
              "summarise them, for tens of thousands of points");
-    p.add("exact_max_points", exact_max_points_, std::int64_t{3000}).at_least(1).unit("points")
+    p.add("exact_max_points", exact_max_points_, std::int64_t{10000}).at_least(1).unit("points")
         .doc("the exact form refuses a touch that would take it beyond this many training points (use form: sparse); "
-             "its per-touch update passes 50 ms at about 2,700 points on one core (docs/benchmarks.md)");
+             "its per-touch update passes 50 ms at about 2,700 points on one core and grows as the points squared "
+             "(docs/benchmarks.md)");
     p.add("inducing_spacing_mm", sparse_.inducing_spacing_mm, 8.0).unit("mm").above(0.0)
         .doc("sparse form: least distance between two inducing sites (each a signed pair across the surface); "
              "smaller follows the exact form more closely at a cost that grows as the sites squared");

@@ -17,6 +17,7 @@
 using namespace touchcloud;
 using touchcloud::test::SphereObject;
 using touchcloud::test::TorusObject;
+using touchcloud::test::one_row;
 
 namespace {
 
@@ -25,8 +26,6 @@ gp::ImplicitSurfaceOptions matern_options() {
   o.kernel = gp::ImplicitKernelKind::matern52;
   return o;
 }
-
-Eigen::MatrixX3d one_row(const Eigen::Vector3d& p) { return p.transpose(); }
 
 Eigen::MatrixX3d vertices_of(const scoring::TriangleMesh& mesh) {
   Eigen::MatrixX3d v(static_cast<Eigen::Index>(mesh.vertices.size()), 3);
@@ -90,22 +89,7 @@ TEST(SparseImplicitSurface, SphereRadiusAndTorusSign) {
   const SphereObject sphere;
   gp::SparseImplicitSurface s(matern_options(), {5.0});
   for (const auto& t : sphere.touches(100)) s.add(t);
-  double worst = 0;
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j)
-      for (int k = -1; k <= 1; ++k) {
-        if (!i && !j && !k) continue;
-        const Eigen::Vector3d d = Eigen::Vector3d(i, j, k).normalized();
-        Eigen::Vector3d a = sphere.centre_mm, b = sphere.centre_mm + 2 * sphere.radius_mm * d;
-        ASSERT_LT(s.mean(one_row(a))[0], 0);
-        ASSERT_GT(s.mean(one_row(b))[0], 0);
-        for (int it = 0; it < 40; ++it) {
-          const Eigen::Vector3d m = 0.5 * (a + b);
-          (s.mean(one_row(m))[0] < 0 ? a : b) = m;
-        }
-        worst = std::max(worst, std::abs((0.5 * (a + b) - sphere.centre_mm).norm() - sphere.radius_mm));
-      }
-  EXPECT_LT(worst, 0.25);
+  EXPECT_LT(test::worst_radius_error(s, sphere), 0.25);
 
   const TorusObject torus;
   gp::SparseImplicitSurface ring(matern_options(), {5.0});

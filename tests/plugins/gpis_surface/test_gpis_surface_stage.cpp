@@ -38,6 +38,14 @@ TactileCloudPtr tactile_for(const gp::ImplicitTouch& t) {
   return tactile;
 }
 
+// The largest distance of a point of `cloud` from the sphere's surface.
+double farthest_off(const PointCloud& cloud, const test::SphereObject& sphere) {
+  double worst = 0;
+  for (const auto& p : cloud.points)
+    worst = std::max(worst, std::abs((p.getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm));
+  return worst;
+}
+
 class GpisSurfaceStage : public ::testing::Test {
  protected:
   test::TempDir dir_;
@@ -59,9 +67,7 @@ TEST_F(GpisSurfaceStage, CloudOnTheSphereAndMeshWithVariance) {
     out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
   h.finish();
   ASSERT_EQ(out->size(), 2000u);
-  double worst = 0;
-  for (const auto& p : out->points)
-    worst = std::max(worst, std::abs((p.getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm));
+  const double worst = farthest_off(*out, sphere);
   EXPECT_LT(worst, 0.5);  // the tolerance of tests/gp/test_level_set_mesh.cpp
   EXPECT_GE(h.metric("max_vertex_variance_mm2"), h.metric("mean_vertex_variance_mm2"));
   EXPECT_GE(h.metric("mean_vertex_variance_mm2"), 0.0);
@@ -105,9 +111,7 @@ TEST_F(GpisSurfaceStage, SparseFormOnTheSphere) {
   for (const auto& t : sphere.touches(40))
     out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
   h.finish();
-  double worst = 0;
-  for (const auto& p : out->points)
-    worst = std::max(worst, std::abs((p.getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm));
+  const double worst = farthest_off(*out, sphere);
   EXPECT_LT(worst, 0.5);
   EXPECT_GE(h.metric("mean_vertex_variance_mm2"), 0.0);
 }

@@ -13,6 +13,7 @@
 #include "touchcloud/io/image_sequence.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/types/camera_image.hpp"
+#include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/mono_colour_frame.hpp"
 
 namespace touchcloud {
@@ -45,6 +46,7 @@ class ImageReader final : public Stage {
     ports.output<CameraImagePtr>("image", "the image, 8-bit grey, with its view; pose unknown (identity)");
     ports.output<MonoColourFramePtr>(
         "colour", "the image, 8-bit BGR (a grey or 16-bit file is refused), as a GelSight-type sensor's frame");
+    ports.output<FrameStamp>("stamp", "the file's number in the sequence (from 0), its timestamp and its name");
     ports.output<bool>("last", "true on the sequence's last file (a loop's until), and for a single file");
     ports.metric("frames_read", "frames", "files read so far");
   }
@@ -88,6 +90,7 @@ class ImageReader final : public Stage {
       frame->timestamp_s = timestamp_s;
       io.output<MonoColourFramePtr>("colour", std::move(frame));
     }
+    if (io.wants("stamp")) io.output<FrameStamp>("stamp", FrameStamp{index, timestamp_s, file.filename().string()});
     io.output<bool>("last", at + 1 == files_.size());
     ctx.metric("frames_read", static_cast<double>(frames_read_), "frames");
   }

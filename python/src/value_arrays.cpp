@@ -99,7 +99,8 @@ py::object to_python(const std::string& key, const std::any& value) {
   if (const auto* v = std::any_cast<SurfaceModelPtr>(&value)) return py::cast(Surface(*v));
   if (const auto* v = std::any_cast<CameraImagePtr>(&value)) return image_array((*v)->image);
   if (const auto* v = std::any_cast<FrameStamp>(&value))
-    return py::dict(py::arg("sequence") = v->sequence, py::arg("timestamp_s") = v->timestamp_s);
+    return py::dict(py::arg("sequence") = v->sequence, py::arg("timestamp_s") = v->timestamp_s,
+                    py::arg("source") = v->source);
   if (const auto* v = std::any_cast<StereoFramePtr>(&value)) {
     py::dict d;
     d["left"] = image_array((*v)->left);

@@ -23,6 +23,28 @@ GelSightSimulation::GelSightSimulation(Scene scene, std::uint64_t noise_seed,
   const Scene& s = this->scene();
   if (s.effects.has(Effect::Render) && s.effects.has(Effect::PixelNoise) && s.effect_parameters.noise_sigma_grey > 0)
     image_noise_ = std::make_unique<ImageNoise>(s.effect_parameters.noise_sigma_grey);
+  if (s.effects.has(Effect::Vignetting)) {
+    const int w = sensor().width_px, h = sensor().height_px;
+    const double cx = 0.5 * (w - 1), cy = 0.5 * (h - 1), corner2 = cx * cx + cy * cy;
+    lens_fall_.create(h, w, CV_32FC3);
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const float fall = static_cast<float>(
+            1 - s.effect_parameters.lens_fall_off * ((u - cx) * (u - cx) + (v - cy) * (v - cy)) / corner2);
+        lens_fall_.at<cv::Vec3f>(v, u) = cv::Vec3f(fall, fall, fall);
+      }
+  }
+}
+
+void GelSightSimulation::apply_lens_and_exposure(cv::Mat& image, bool frame) const {
+  const bool drift = frame && scene().effects.has(Effect::ExposureDrift);
+  if (lens_fall_.empty() && !drift) return;
+  cv::Mat light;
+  image.convertTo(light, CV_32FC3);
+  if (!lens_fall_.empty()) light = light.mul(lens_fall_);
+  const EffectParameters& p = scene().effect_parameters;
+  if (drift) light.convertTo(image, CV_8UC3, p.exposure_gain, p.exposure_offset_grey);  // rounds and saturates
+  else light.convertTo(image, CV_8UC3);
 }
 
 bool GelSightSimulation::press(const Eigen::Isometry3d& base_from_sensor) {
@@ -51,6 +73,7 @@ MonoColourFrame GelSightSimulation::render() {
     throw InputError("the GelSight image was asked for, but the scene " + scene().file.string() +
                      " has no 'render' effect: add 'render' to its effects");
   cv::Mat image = renderer_.render(pad().height_mm);
+  apply_lens_and_exposure(image, true);
   // The lens blurs; the sensor then adds its noise.
   if (scene().effects.has(Effect::Blur)) blur_image(image, scene().effect_parameters.blur_sigma_px);
   if (image_noise_) {
@@ -63,7 +86,9 @@ MonoColourFrame GelSightSimulation::render() {
 
 MonoColourFrame GelSightSimulation::render_reference() {
   frame();
-  return stamped(renderer_.background().clone());
+  cv::Mat image = renderer_.background().clone();
+  apply_lens_and_exposure(image, false);
+  return stamped(image);
 }
 
 HeightMap GelSightSimulation::height_truth(double contact_threshold_mm) const {

@@ -58,6 +58,15 @@ TEST(GelSightScene, NamesTheFieldValueAndRuleOfEachProblem) {
   EXPECT_NE(problem("  image_size_px: [320.5, 240]\n").find("sensor.image_size_px"), std::string::npos);
   const std::string markers = problem("", "[contact, refraction]");
   EXPECT_NE(markers.find("'refraction' does not apply to sensor.family gelsight"), std::string::npos) << markers;
+  const std::string stereo = input_error([&] {
+    write_file(dir / "s.yaml", "object: " + kPlaneObject + "\neffects: [contact, {vignetting: {fall_off: 0.2}}]\n");
+    simulation::load_scene(dir / "s.yaml");
+  });
+  EXPECT_NE(stereo.find("'vignetting' applies to sensor.family gelsight only"), std::string::npos) << stereo;
+  EXPECT_NE(problem("", "[contact, {exposure_drift: {gain: 0}}]").find("effects.exposure_drift.gain"),
+            std::string::npos);
+  EXPECT_NE(problem("", "[contact, {exposure_drift: {offset_grey: -300}}]").find("effects.exposure_drift.offset_grey"),
+            std::string::npos);
   // A GelStereo field is unknown to the GelSight section.
   EXPECT_NE(problem("  gel: {diameter_mm: 65}\n").find("sensor.gel"), std::string::npos);
 }
@@ -201,6 +210,41 @@ TEST(GelSightEffects, PixelNoiseAndBlurEachChangeOnlyTheImage) {
   EXPECT_LE(d.at<cv::Vec3b>(5, 5)[0], 1);
   EXPECT_EQ(image("[contact, render]", "p2.yaml").size(), plain.size());
   EXPECT_EQ(differing_pixels(image("[contact, render]", "p3.yaml"), plain), 0);  // seeded: the same
+}
+
+TEST(GelSightEffects, VignettingScalesFrameAndReferenceAlikeTowardsTheCorners) {
+  TempDir dir;
+  auto render = [&](const std::string& effects, const std::string& name) {
+    GelSightSimulation sim(gelsight_scene(dir, kPlaneObject, effects, "", name), 1);
+    sim.step({0, 0}, false);
+    return std::pair{sim.render().image, sim.render_reference().image};
+  };
+  const auto [plain, plain_reference] = render("[contact, render]", "p.yaml");
+  const auto [dark, dark_reference] = render("[contact, render, {vignetting: {fall_off: 0.2}}]", "v.yaml");
+  // The centre keeps its light, a corner loses a fifth of it, in frame and reference alike.
+  const cv::Vec3b centre = plain.at<cv::Vec3b>(120, 160), corner = plain.at<cv::Vec3b>(0, 0);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(dark.at<cv::Vec3b>(120, 160)[c], centre[c], 1);
+    EXPECT_NEAR(dark.at<cv::Vec3b>(0, 0)[c], 0.8 * corner[c], 1);
+  }
+  EXPECT_EQ(differing_pixels(dark, dark_reference), 0);
+  EXPECT_EQ(differing_pixels(plain, plain_reference), 0);
+}
+
+TEST(GelSightEffects, ExposureDriftChangesTheFramesNotTheReference) {
+  TempDir dir;
+  GelSightSimulation plain(gelsight_scene(dir, kPlaneObject, "[contact, render]", "", "p.yaml"), 1);
+  GelSightSimulation drift(
+      gelsight_scene(dir, kPlaneObject, "[contact, render, {exposure_drift: {gain: 1.05, offset_grey: -3}}]", "",
+                     "d.yaml"),
+      1);
+  plain.step({0, 0}, false);
+  drift.step({0, 0}, false);
+  EXPECT_EQ(differing_pixels(drift.render_reference().image, plain.render_reference().image), 0);
+  const cv::Mat frame = drift.render().image, before = plain.render().image;
+  for (const cv::Point at : {cv::Point(160, 120), cv::Point(3, 4), cv::Point(300, 200)})
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(frame.at<cv::Vec3b>(at)[c], 1.05 * before.at<cv::Vec3b>(at)[c] - 3, 0.5) << at << " channel " << c;
 }
 
 TEST(GelSightEffects, PoseNoiseMovesOnlyTheReportedPose) {

@@ -5,7 +5,8 @@ namespace touchcloud::simulation {
 const std::array<Effect, kEffectCount>& all_effects() {
   static const std::array<Effect, kEffectCount> effects{
       Effect::Contact, Effect::ElasticSpread, Effect::Refraction,    Effect::LensDistortion, Effect::Render,
-      Effect::PixelNoise, Effect::Blur,       Effect::MarkerDropout, Effect::PoseNoise};
+      Effect::PixelNoise, Effect::Blur,       Effect::MarkerDropout, Effect::PoseNoise,
+      Effect::Vignetting, Effect::ExposureDrift};
   return effects;
 }
 
@@ -20,6 +21,8 @@ const char* to_string(Effect effect) {
     case Effect::Blur: return "blur";
     case Effect::MarkerDropout: return "marker_dropout";
     case Effect::PoseNoise: return "pose_noise";
+    case Effect::Vignetting: return "vignetting";
+    case Effect::ExposureDrift: return "exposure_drift";
   }
   return "?";
 }

@@ -51,6 +51,14 @@ void read_effect(Effect effect, const YAML::Node& params, Scene& scene, ConfigPr
       if (p.marker_grey >= p.background_grey * (1 - p.vignetting))
         f.error("marker_grey", "must be darker than the background everywhere");
       break;
+    case Effect::Vignetting:
+      p.lens_fall_off = f.number("fall_off", p.lens_fall_off, FieldRule::Probability);
+      break;
+    case Effect::ExposureDrift:
+      p.exposure_gain = f.number("gain", p.exposure_gain, FieldRule::Positive);
+      p.exposure_offset_grey = f.number("offset_grey", p.exposure_offset_grey);
+      if (std::abs(p.exposure_offset_grey) > 255) f.error("offset_grey", "must be within -255 to 255");
+      break;
     case Effect::Contact:
     case Effect::Refraction:
     case Effect::LensDistortion: break;  // no fields: any given is unknown
@@ -120,6 +128,12 @@ Scene load_scene(const fs::path& file) {
           problems.add(effects, std::string("effects: '") + to_string(e) +
                                     "' does not apply to sensor.family gelsight (a flat gel without markers, seen "
                                     "straight on); remove it");
+    if (scene.family == sensor::SensorFamily::GelStereo)
+      for (Effect e : {Effect::Vignetting, Effect::ExposureDrift})
+        if (scene.effects.has(e))
+          problems.add(effects, std::string("effects: '") + to_string(e) +
+                                    "' applies to sensor.family gelsight only (the GelStereo's render effect has its "
+                                    "own vignetting); remove it");
   }
   problems.throw_if_any();
   return scene;

@@ -9,6 +9,7 @@
 
 #include "pipeline_fixture.hpp"
 #include "stage_harness.hpp"
+#include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/mono_colour_frame.hpp"
 
 using namespace touchcloud;
@@ -131,6 +132,19 @@ TEST(ImageReaderColour, ReadsEightBitColourWithTheSensorsNameAndPitch) {
     EXPECT_EQ(cv::norm(frame->image, bgr, cv::NORM_INF), 0) << name;
     EXPECT_EQ(frame->sensor, "mini");
     EXPECT_EQ(frame->mm_per_px, 0.0625);
+  }
+}
+
+TEST(ImageReaderColour, TheStampNamesEachFileOfAGlob) {
+  test::TempDir dir;
+  const cv::Mat bgr(24, 32, CV_8UC3, cv::Scalar(10, 20, 30));
+  for (const char* name : {"press_10.png", "press_9.png"}) ASSERT_TRUE(cv::imwrite((dir / name).string(), bgr));
+  test::StageHarness reader("image_reader", {{"path", (dir / "press_*.png").string()}});
+  reader.configure();
+  for (const auto& [sequence, name] : {std::pair{0, "press_9.png"}, std::pair{1, "press_10.png"}}) {
+    const auto stamp = reader.process_one<FrameStamp>({}, "stamp");
+    EXPECT_EQ(stamp.sequence, sequence);
+    EXPECT_EQ(stamp.source, name);
   }
 }
 

@@ -4,8 +4,9 @@
 // apex) and computes the pad's height map (the contact decides the motion).
 // Everything else is computed only when asked for:
 //
-//   render()            the colour image (`render`; pixel_noise, blur)
-//   render_reference()  the no-contact image (no noise)
+//   render()            the colour image (`render`; vignetting, exposure_drift,
+//                       blur, pixel_noise, in the order light meets them)
+//   render_reference()  the no-contact image (vignetting only: no drift, no noise)
 //   height_truth()      the height map with a contact mask from a threshold
 //                       on it (the TactileDataset's ground truth)
 //   truth_tactile()     the pressed pad's surface on a pixel grid as a
@@ -48,9 +49,12 @@ class GelSightSimulation final : public TouchSimulation {
   double gel_reach_mm() const override { return sensor().gel_thickness_mm; }
   bool press(const Eigen::Isometry3d& base_from_sensor) override;
   MonoColourFrame stamped(cv::Mat image) const;
+  // vignetting, then (a frame, not the reference) exposure_drift: on the 8-bit image, rounded again.
+  void apply_lens_and_exposure(cv::Mat& image, bool frame) const;
 
   PhotometricRenderer renderer_;
   std::unique_ptr<ImageNoise> image_noise_;
+  cv::Mat lens_fall_;  // CV_32FC3, with vignetting only
   PadPress pad_;  // of the last frame
 };
 

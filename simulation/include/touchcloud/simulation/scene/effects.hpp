@@ -20,8 +20,10 @@ enum class Effect {
   Blur,            // Gaussian blur of the images
   MarkerDropout,   // markers missing from a view
   PoseNoise,       // the reported sensor pose is perturbed (the truth is not)
+  Vignetting,      // GelSight: the lens darkens the whole image, contact shading included, towards the corners
+  ExposureDrift,   // GelSight: frames are taken at another gain and offset than the no-contact reference
 };
-inline constexpr std::size_t kEffectCount = 9;
+inline constexpr std::size_t kEffectCount = 11;
 
 const std::array<Effect, kEffectCount>& all_effects();
 const char* to_string(Effect effect);               // "elastic_spread"
@@ -59,6 +61,16 @@ struct EffectParameters {
   double background_grey = 200.0;  // at the image centre
   double vignetting = 0.35;        // relative fall-off of the background at the corners
   double marker_grey = 40.0;       // a marker dot's centre
+  // vignetting (gelsight): every pixel, reference and frames alike, times
+  // 1 - fall_off (r / r_corner)^2, r its distance from the image centre. The
+  // sensor's own `vignetting` shapes only the background's light; this is
+  // the lens's, so a contact's colour difference shrinks towards the corners.
+  double lens_fall_off = 0.15;
+  // exposure_drift (gelsight): a frame is gain I + offset_grey of what the
+  // reference's exposure gives it (auto-exposure or LED warm-up between the
+  // no-contact image and the presses); the reference keeps its own.
+  double exposure_gain = 1.01;
+  double exposure_offset_grey = 1.0;
 };
 
 }  // namespace touchcloud::simulation

@@ -6,6 +6,12 @@
 //                             copy before each touch is not timed)
 //   BM_ImplicitGridMean/n     the mean on a 32^3 grid from n points (what the
 //                             stage meshes after each touch, at cells: 31)
+//   BM_SparseTouchUpdate/n    the same touch added to the sparse form
+//                             (inducing sites 8 mm apart, the default) of
+//                             n training points
+//   BM_SparseGridMean/n/t     the sparse form's mean on a 32^3 grid, on t threads
+//   BM_SparseSurfaceVariance/n  its variance at 2,000 points on the sphere
+//                             (what a next-touch choice scores footprints by)
 //   BM_LevelSetMesh/c         VTK flying edges on a c^3 grid of a sphere's
 //                             signed distance (VTK's SMP backend, TBB on
 //                             Debian, uses the cores the process may: run
@@ -15,9 +21,11 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <type_traits>
 
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
+#include "touchcloud/gp/sparse_implicit_surface.hpp"
 
 using namespace touchcloud;
 
@@ -38,21 +46,30 @@ gp::ImplicitTouch sphere_touch(int i, int count) {
   return t;
 }
 
-gp::ImplicitSurface model_of(Eigen::Index points, int touches_total) {
+// A model of the given form grown to at least `points` training points.
+template <class Model>
+Model model_of(Eigen::Index points, int touches_total) {
   gp::ImplicitSurfaceOptions o;
   o.kernel = gp::ImplicitKernelKind::matern52;
   o.reselect_growth = 1e6;  // one selection, on the first touch
-  gp::ImplicitSurface s(o);
+  Model s = [&] {
+    if constexpr (std::is_same_v<Model, gp::SparseImplicitSurface>)
+      return Model(o, gp::SparseImplicitOptions{});
+    else
+      return Model(o);
+  }();
   for (int i = 0; s.training_size() < points; ++i) s.add(sphere_touch(i, touches_total));
   return s;
 }
 
-void BM_ImplicitTouchUpdate(benchmark::State& state) {
-  const gp::ImplicitSurface base = model_of(state.range(0), 400);
+// The last of 400 directions added to a copy of the model (the copy not timed).
+template <class Model>
+void time_touch_update(benchmark::State& state) {
+  const Model base = model_of<Model>(state.range(0), 400);
   const gp::ImplicitTouch touch = sphere_touch(399, 400);
   for (auto _ : state) {
     state.PauseTiming();
-    std::optional<gp::ImplicitSurface> s(base);
+    std::optional<Model> s(base);
     state.ResumeTiming();
     benchmark::DoNotOptimize(s->add(touch));
     state.PauseTiming();
@@ -60,17 +77,43 @@ void BM_ImplicitTouchUpdate(benchmark::State& state) {
     state.ResumeTiming();
   }
   state.counters["training_points"] = static_cast<double>(base.training_size());
+  if constexpr (std::is_same_v<Model, gp::SparseImplicitSurface>)
+    state.counters["inducing_points"] = static_cast<double>(base.inducing_size());
 }
+
+void BM_ImplicitTouchUpdate(benchmark::State& state) { time_touch_update<gp::ImplicitSurface>(state); }
 BENCHMARK(BM_ImplicitTouchUpdate)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
 
 void BM_ImplicitGridMean(benchmark::State& state) {
-  const gp::ImplicitSurface s = model_of(state.range(0), 400);
+  const auto s = model_of<gp::ImplicitSurface>(state.range(0), 400);
   const gp::SampleGrid grid = gp::grid_around(s.contact_points(), 5.0, 31);
   const Eigen::MatrixX3d q = grid.sample_points();
   for (auto _ : state) benchmark::DoNotOptimize(s.mean(q));
   state.counters["grid_points"] = static_cast<double>(q.rows());
 }
 BENCHMARK(BM_ImplicitGridMean)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+
+void BM_SparseTouchUpdate(benchmark::State& state) { time_touch_update<gp::SparseImplicitSurface>(state); }
+BENCHMARK(BM_SparseTouchUpdate)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+void BM_SparseGridMean(benchmark::State& state) {
+  const auto s = model_of<gp::SparseImplicitSurface>(state.range(0), 400);
+  const gp::SampleGrid grid = gp::grid_around(s.contact_points(), 5.0, 31);
+  const Eigen::MatrixX3d q = grid.sample_points();
+  for (auto _ : state) benchmark::DoNotOptimize(s.mean(q, static_cast<int>(state.range(1))));
+  state.counters["grid_points"] = static_cast<double>(q.rows());
+  state.counters["inducing_points"] = static_cast<double>(s.inducing_size());
+}
+BENCHMARK(BM_SparseGridMean)->Args({10000, 1})->Args({10000, 2})->Unit(benchmark::kMillisecond);
+
+void BM_SparseSurfaceVariance(benchmark::State& state) {
+  const auto s = model_of<gp::SparseImplicitSurface>(state.range(0), 400);
+  Eigen::MatrixX3d q(2000, 3);
+  for (int i = 0; i < 2000; ++i) q.row(i) = sphere_touch(i, 2000).points_mm.row(0);
+  for (auto _ : state) benchmark::DoNotOptimize(s.variance(q));
+  state.counters["inducing_points"] = static_cast<double>(s.inducing_size());
+}
+BENCHMARK(BM_SparseSurfaceVariance)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 void BM_LevelSetMesh(benchmark::State& state) {
   const int cells = static_cast<int>(state.range(0));

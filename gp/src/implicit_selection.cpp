@@ -88,4 +88,18 @@ SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& p, const Ei
   return maximise_lml(f, bounds, {start}, search);
 }
 
+SearchResult select_implicit_on_training(const ImplicitTraining& data, const Eigen::Vector3d& centre, double radius,
+                                         const ImplicitSurfaceOptions& options, Eigen::Index& subset_size) {
+  const Eigen::Index m = std::min(data.n, options.selection_points);
+  Eigen::MatrixX3d p(m, 3);
+  Eigen::VectorXd r(m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Eigen::Index i = j * data.n / m;  // evenly strided: contacts and signed points of every touch
+    p.row(j) = data.x.row(i);
+    r[j] = data.f[i] - ((data.x.row(i).transpose() - centre).norm() - radius);
+  }
+  subset_size = m;
+  return select_implicit_hyperparameters(p, r, data.diameter_mm(), options);
+}
+
 }  // namespace touchcloud::gp

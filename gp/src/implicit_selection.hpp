@@ -18,4 +18,10 @@ namespace touchcloud::gp {
 SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& points_mm, const Eigen::VectorXd& residual_mm,
                                              double diameter_mm, const ImplicitSurfaceOptions& options);
 
+// The same on an even stride of at most options.selection_points of the
+// training points (contacts and signed points of every touch), residuals
+// against the prior sphere (centre, radius); `subset_size` set to its size.
+SearchResult select_implicit_on_training(const ImplicitTraining& data, const Eigen::Vector3d& centre_mm, double radius_mm,
+                                         const ImplicitSurfaceOptions& options, Eigen::Index& subset_size);
+
 }  // namespace touchcloud::gp

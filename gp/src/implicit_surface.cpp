@@ -37,6 +37,74 @@ Eigen::Vector3d implicit_patch_normal(const Eigen::MatrixX3d& p, const Eigen::Ve
 
 }  // namespace
 
+Eigen::MatrixX3d checked_touch_normals(const ImplicitTouch& touch, const Eigen::MatrixX3d& contacts,
+                                       const std::string& where, bool& estimated) {
+  const Eigen::Index k = touch.points_mm.rows();
+  if (k == 0) throw InputError(where + ": no points");
+  if (!touch.points_mm.allFinite()) throw InputError(where + ": a point is not finite");
+  estimated = false;
+  Eigen::MatrixX3d normals = touch.normals;
+  if (normals.rows() == 0) {
+    // No normals: the side comes from the patch's plane and the centroid of all points.
+    Eigen::MatrixX3d all(contacts.rows() + k, 3);
+    all << contacts, touch.points_mm;
+    const Eigen::Vector3d own = implicit_spread_of(touch.points_mm), whole = implicit_spread_of(all);
+    if (!(own[1] > 1e-6 * own[0]))
+      throw InputError(where + ": its " + std::to_string(k) + " points are " + (own[0] > 0 ? "collinear" : "one point") +
+                       " and carry no normals: the side of the surface they face is unknown");
+    const Eigen::Vector3d centroid = all.colwise().mean().transpose();
+    const Eigen::Vector3d n = implicit_patch_normal(touch.points_mm, centroid);
+    const double off_plane = n.dot(touch.points_mm.colwise().mean().transpose() - centroid);
+    if (!(off_plane > 1e-3 * whole[0]))
+      throw InputError(where + ": the " + std::to_string(all.rows()) +
+                       " points touched so far lie about the plane of this touch, which carries no normals: inside "
+                       "and outside cannot be told apart");
+    normals = n.transpose().replicate(k, 1);
+    estimated = true;
+  } else {
+    if (normals.rows() != k)
+      throw InputError(where + ": " + std::to_string(normals.rows()) + " normals for " + std::to_string(k) + " points");
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const double len = normals.row(i).norm();
+      if (!std::isfinite(len) || std::abs(len - 1) > 1e-6)
+        throw InputError(where + ": the normal of point " + std::to_string(i) + " has length " + std::to_string(len) +
+                         " (unit length expected)");
+    }
+  }
+  return normals;
+}
+
+void append_implicit_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals, const ImplicitSurfaceOptions& options,
+                              ImplicitTraining& t) {
+  const Eigen::Index k = touch.points_mm.rows();
+  const Eigen::Index add = implicit_rows_of(k, options);
+  if (t.x.rows() < t.n + add) {
+    const Eigen::Index capacity = std::max<Eigen::Index>(2 * t.x.rows(), t.n + add);
+    t.x.conservativeResize(capacity, 3);
+    t.f.conservativeResize(capacity);
+  }
+  t.x.middleRows(t.n, k) = touch.points_mm;
+  t.f.segment(t.n, k).setZero();
+  Eigen::Index row = t.n + k;
+  for (Eigen::Index i = 0; i < k; i += options.offset_stride)
+    for (const double side : {1.0, -1.0}) {
+      t.x.row(row) = touch.points_mm.row(i) + side * options.offset_mm * normals.row(i);
+      t.f[row++] = side * options.offset_mm;
+    }
+  t.n = row;
+  t.contacts.conservativeResize(t.contacts.rows() + k, 3);
+  t.contacts.bottomRows(k) = touch.points_mm;
+}
+
+Eigen::Index implicit_rows_of(Eigen::Index contacts, const ImplicitSurfaceOptions& options) {
+  return contacts + 2 * ((contacts + options.offset_stride - 1) / options.offset_stride);
+}
+
+double ImplicitTraining::diameter_mm() const {
+  const Eigen::MatrixX3d p = x.topRows(n);
+  return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
+}
+
 std::string to_string(ImplicitUpdatePath path) {
   switch (path) {
     case ImplicitUpdatePath::selected: return "selected";
@@ -59,6 +127,8 @@ void ImplicitSurfaceOptions::validate() const {
   if (!(max_noise_mm > 0) || !std::isfinite(max_noise_mm)) fail("max_noise_mm", max_noise_mm, "finite and > 0");
   if (!(min_noise_mm > 0) || !(min_noise_mm <= max_noise_mm)) fail("min_noise_mm", min_noise_mm, "> 0 and <= max_noise_mm");
   if (max_iterations < 1) fail("max_iterations", max_iterations, ">= 1");
+  if (max_training_points && *max_training_points < 1)
+    fail("max_training_points", static_cast<double>(*max_training_points), ">= 1 when set");
   jitter.validate();
 }
 
@@ -68,44 +138,18 @@ ImplicitSurface::ImplicitSurface(ImplicitSurfaceOptions options) : options_(std:
 
 ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
   const std::string where = "implicit surface, touch " + std::to_string(touches_ + 1);
-  const Eigen::Index k = touch.points_mm.rows();
-  if (k == 0) throw InputError(where + ": no points");
-  if (!touch.points_mm.allFinite()) throw InputError(where + ": a point is not finite");
-  Eigen::MatrixX3d normals = touch.normals;
   ImplicitUpdate update;
-  if (normals.rows() == 0) {
-    // No normals: the side comes from the patch's plane and the centroid of all points.
-    Eigen::MatrixX3d all(contacts_.rows() + k, 3);
-    all << contacts_, touch.points_mm;
-    const Eigen::Vector3d own = implicit_spread_of(touch.points_mm), whole = implicit_spread_of(all);
-    if (!(own[1] > 1e-6 * own[0]))
-      throw InputError(where + ": its " + std::to_string(k) + " points are " + (own[0] > 0 ? "collinear" : "one point") +
-                       " and carry no normals: the side of the surface they face is unknown");
-    const Eigen::Vector3d centroid = all.colwise().mean().transpose();
-    const Eigen::Vector3d n = implicit_patch_normal(touch.points_mm, centroid);
-    const double off_plane = n.dot(touch.points_mm.colwise().mean().transpose() - centroid);
-    if (!(off_plane > 1e-3 * whole[0]))
-      throw InputError(where + ": the " + std::to_string(all.rows()) +
-                       " points touched so far lie about the plane of this touch, which carries no normals: inside "
-                       "and outside cannot be told apart");
-    normals = n.transpose().replicate(k, 1);
-    update.normals_estimated = true;
-  } else {
-    if (normals.rows() != k)
-      throw InputError(where + ": " + std::to_string(normals.rows()) + " normals for " + std::to_string(k) + " points");
-    for (Eigen::Index i = 0; i < k; ++i) {
-      const double len = normals.row(i).norm();
-      if (!std::isfinite(len) || std::abs(len - 1) > 1e-6)
-        throw InputError(where + ": the normal of point " + std::to_string(i) + " has length " + std::to_string(len) +
-                         " (unit length expected)");
-    }
-  }
-  const Eigen::Index from = n_;
-  append_training(touch, normals);
+  const Eigen::MatrixX3d normals = checked_touch_normals(touch, data_.contacts, where, update.normals_estimated);
+  const Eigen::Index from = data_.n;
+  const Eigen::Index adding = implicit_rows_of(touch.points_mm.rows(), options_);
+  if (options_.max_training_points && data_.n + adding > *options_.max_training_points)
+    throw InputError(where + ": " + std::to_string(data_.n + adding) + " training points would exceed the exact form's " +
+                     std::to_string(*options_.max_training_points) + " (max_training_points): use the sparse form");
+  append_implicit_training(touch, normals, options_, data_);
   ++touches_;
-  update.points_added = n_ - from;
+  update.points_added = data_.n - from;
   const bool first = selected_at_ == 0;
-  const bool grown = static_cast<double>(n_) >= (1 + options_.reselect_growth) * static_cast<double>(selected_at_);
+  const bool grown = static_cast<double>(data_.n) >= (1 + options_.reselect_growth) * static_cast<double>(selected_at_);
   if (first || grown || !scale_covers_data()) {
     const ImplicitUpdate s = select();
     update.path = s.path;
@@ -118,60 +162,26 @@ ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
     update.path = ImplicitUpdatePath::refactorised;
   }
   solve_weights();
-  update.training_points = n_;
+  update.training_points = data_.n;
   update.jitter_mm2 = jitter_mm2_;
   return update;
 }
 
-void ImplicitSurface::append_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals) {
-  const Eigen::Index k = touch.points_mm.rows();
-  const Eigen::Index pairs = (k + options_.offset_stride - 1) / options_.offset_stride;
-  const Eigen::Index add = k + 2 * pairs;
-  if (x_.rows() < n_ + add) {
-    const Eigen::Index capacity = std::max<Eigen::Index>(2 * x_.rows(), n_ + add);
-    x_.conservativeResize(capacity, 3);
-    f_.conservativeResize(capacity);
-  }
-  x_.middleRows(n_, k) = touch.points_mm;
-  f_.segment(n_, k).setZero();
-  Eigen::Index row = n_ + k;
-  for (Eigen::Index i = 0; i < k; i += options_.offset_stride)
-    for (const double side : {1.0, -1.0}) {
-      x_.row(row) = touch.points_mm.row(i) + side * options_.offset_mm * normals.row(i);
-      f_[row++] = side * options_.offset_mm;
-    }
-  n_ = row;
-  contacts_.conservativeResize(contacts_.rows() + k, 3);
-  contacts_.bottomRows(k) = touch.points_mm;
-}
-
-double ImplicitSurface::diameter_mm() const {
-  const Eigen::MatrixX3d x = x_.topRows(n_);
-  return (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
-}
-
 bool ImplicitSurface::scale_covers_data() const {
-  return options_.kernel != ImplicitKernelKind::thin_plate || diameter_mm() <= h_.lengthscale_mm;
+  return options_.kernel != ImplicitKernelKind::thin_plate || data_.diameter_mm() <= h_.lengthscale_mm;
 }
 
 void ImplicitSurface::set_prior() {
-  centre_ = contacts_.colwise().mean().transpose();
-  radius_ = (contacts_.rowwise() - centre_.transpose()).rowwise().norm().mean();
+  centre_ = data_.contacts.colwise().mean().transpose();
+  radius_ = (data_.contacts.rowwise() - centre_.transpose()).rowwise().norm().mean();
 }
 
 ImplicitUpdate ImplicitSurface::select() {
   set_prior();
-  const Eigen::Index m = std::min(n_, options_.selection_points);
-  Eigen::MatrixX3d p(m, 3);
-  Eigen::VectorXd r(m);
-  for (Eigen::Index j = 0; j < m; ++j) {
-    const Eigen::Index i = j * n_ / m;  // evenly strided: contacts and signed points of every touch
-    p.row(j) = x_.row(i);
-    r[j] = f_[i] - prior(x_.row(i).transpose());
-  }
-  const SearchResult result = select_implicit_hyperparameters(p, r, diameter_mm(), options_);
+  Eigen::Index m = 0;
+  const SearchResult result = select_implicit_on_training(data_, centre_, radius_, options_, m);
   h_ = result.hyperparameters;
-  selected_at_ = n_;
+  selected_at_ = data_.n;
   refactorise();
   ImplicitUpdate update;
   update.path = ImplicitUpdatePath::selected;
@@ -182,70 +192,70 @@ ImplicitUpdate ImplicitSurface::select() {
 
 void ImplicitSurface::refactorise() {
   const ImplicitKernel kernel(options_.kernel, h_);
-  const Eigen::Index capacity = x_.rows();
+  const Eigen::Index capacity = data_.x.rows();
   if (factor_.rows() < capacity) factor_.resize(capacity, capacity);
   const CholeskyReport report = factor_with_jitter(
-      factor_.topLeftCorner(n_, n_),
+      factor_.topLeftCorner(data_.n, data_.n),
       [&](Eigen::Ref<Eigen::MatrixXd> out) {
-        for (Eigen::Index j = 0; j < n_; ++j)
-          for (Eigen::Index i = j; i < n_; ++i) out(i, j) = kernel.covariance((x_.row(i) - x_.row(j)).norm());
+        for (Eigen::Index j = 0; j < data_.n; ++j)
+          for (Eigen::Index i = j; i < data_.n; ++i) out(i, j) = kernel.covariance((data_.x.row(i) - data_.x.row(j)).norm());
         out.diagonal().array() += h_.noise_variance_mm2;
       },
       options_.jitter, "implicit surface covariance");
   jitter_mm2_ = report.jitter_mm2;
-  Eigen::VectorXd r(n_);
-  for (Eigen::Index i = 0; i < n_; ++i) r[i] = f_[i] - prior(x_.row(i).transpose());
-  v_ = factor_.topLeftCorner(n_, n_).triangularView<Eigen::Lower>().solve(r);
+  Eigen::VectorXd r(data_.n);
+  for (Eigen::Index i = 0; i < data_.n; ++i) r[i] = data_.f[i] - prior(data_.x.row(i).transpose());
+  v_ = factor_.topLeftCorner(data_.n, data_.n).triangularView<Eigen::Lower>().solve(r);
 }
 
 bool ImplicitSurface::extend_factor(Eigen::Index from) {
   const ImplicitKernel kernel(options_.kernel, h_);
-  const Eigen::Index k = n_ - from;
-  if (factor_.rows() < n_) {
-    Eigen::MatrixXd grown(x_.rows(), x_.rows());
+  const Eigen::Index k = data_.n - from;
+  if (factor_.rows() < data_.n) {
+    Eigen::MatrixXd grown(data_.x.rows(), data_.x.rows());
     grown.topLeftCorner(from, from) = factor_.topLeftCorner(from, from);
     factor_.swap(grown);
   }
   const auto l11 = factor_.topLeftCorner(from, from).triangularView<Eigen::Lower>();
-  const Eigen::MatrixXd b = l11.solve(kernel.cross(x_.topRows(from), x_.middleRows(from, k)));  // L11^-1 K12
-  Eigen::MatrixXd s = kernel.cross(x_.middleRows(from, k), x_.middleRows(from, k)) - b.transpose() * b;
+  const Eigen::MatrixXd b = l11.solve(kernel.cross(data_.x.topRows(from), data_.x.middleRows(from, k)));  // L11^-1 K12
+  Eigen::MatrixXd s = kernel.cross(data_.x.middleRows(from, k), data_.x.middleRows(from, k)) - b.transpose() * b;
   s.diagonal().array() += h_.noise_variance_mm2 + jitter_mm2_;
   Eigen::LLT<Eigen::MatrixXd> llt(s);
   if (llt.info() != Eigen::Success) return false;
   const Eigen::MatrixXd l22 = llt.matrixL();
   const double mean_diagonal = h_.signal_variance_mm2 + h_.noise_variance_mm2 + jitter_mm2_;
-  if (!pivots_above_rounding(l22, mean_diagonal, n_)) return false;
+  if (!pivots_above_rounding(l22, mean_diagonal, data_.n)) return false;
   factor_.block(from, 0, k, from) = b.transpose();
   factor_.block(from, from, k, k) = l22;
   Eigen::VectorXd r(k);
-  for (Eigen::Index i = 0; i < k; ++i) r[i] = f_[from + i] - prior(x_.row(from + i).transpose());
-  v_.conservativeResize(n_);
+  for (Eigen::Index i = 0; i < k; ++i) r[i] = data_.f[from + i] - prior(data_.x.row(from + i).transpose());
+  v_.conservativeResize(data_.n);
   v_.tail(k) = l22.triangularView<Eigen::Lower>().solve(r - b.transpose() * v_.head(from));
   return true;
 }
 
 void ImplicitSurface::solve_weights() {
   const Eigen::MatrixXd& factor = factor_;
-  alpha_ = factor.topLeftCorner(n_, n_).triangularView<Eigen::Lower>().transpose().solve(v_);
+  alpha_ = factor.topLeftCorner(data_.n, data_.n).triangularView<Eigen::Lower>().transpose().solve(v_);
   if (!alpha_.allFinite())
-    throw RunError("implicit surface: the weights of " + std::to_string(n_) + " training points are not finite");
+    throw RunError("implicit surface: the weights of " + std::to_string(data_.n) + " training points are not finite");
 }
 
 void ImplicitSurface::require_touches() const {
-  if (n_ == 0) throw InputError("implicit surface: no touches yet, nothing to predict from");
+  if (data_.n == 0) throw InputError("implicit surface: no touches yet, nothing to predict from");
 }
 
 Eigen::VectorXd ImplicitSurface::mean(const Eigen::Ref<const Eigen::MatrixX3d>& q, int threads) const {
   require_touches();
   const ImplicitKernel kernel(options_.kernel, h_);
-  const Eigen::Matrix3Xd x = x_.topRows(n_).transpose();  // a point per column: contiguous
+  const Eigen::Matrix3Xd x = data_.x.topRows(data_.n).transpose();  // a point per column: contiguous
   Eigen::VectorXd out(q.rows());
   // Each query on its own, in one order: the same values whatever the thread count.
   for_each_block(static_cast<std::size_t>(q.rows()), resolve_threads(threads), 64, [&](std::size_t begin, std::size_t end) {
     for (auto j = static_cast<Eigen::Index>(begin); j < static_cast<Eigen::Index>(end); ++j) {
       const Eigen::Vector3d p = q.row(j).transpose();
       double sum = prior(p);
-      for (Eigen::Index i = 0; i < n_; ++i) sum += alpha_[i] * kernel.covariance((x.col(i) - p).norm());
+      for (Eigen::Index i = 0; i < data_.n; ++i) sum += alpha_[i] * kernel.covariance((x.col(i) - p).norm());
       out[j] = sum;
     }
   });
@@ -255,14 +265,14 @@ Eigen::VectorXd ImplicitSurface::mean(const Eigen::Ref<const Eigen::MatrixX3d>& 
 Eigen::VectorXd ImplicitSurface::variance(const Eigen::Ref<const Eigen::MatrixX3d>& q, std::size_t* clamped) const {
   require_touches();
   const ImplicitKernel kernel(options_.kernel, h_);
-  const auto l = factor_.topLeftCorner(n_, n_).triangularView<Eigen::Lower>();
+  const auto l = factor_.topLeftCorner(data_.n, data_.n).triangularView<Eigen::Lower>();
   Eigen::VectorXd out(q.rows());
   for (Eigen::Index first = 0; first < q.rows(); first += kQueryBlock) {
     const Eigen::Index b = std::min(kQueryBlock, q.rows() - first);
-    const Eigen::MatrixXd v = l.solve(kernel.cross(x_.topRows(n_), q.middleRows(first, b)));
+    const Eigen::MatrixXd v = l.solve(kernel.cross(data_.x.topRows(data_.n), q.middleRows(first, b)));
     out.segment(first, b) = h_.signal_variance_mm2 - v.colwise().squaredNorm().transpose().array();
   }
-  const std::size_t below = clamp_latent_variance(out, "implicit surface", n_);
+  const std::size_t below = clamp_latent_variance(out, "implicit surface", data_.n);
   if (clamped) *clamped = below;
   return out;
 }

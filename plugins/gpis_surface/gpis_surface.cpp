@@ -7,6 +7,11 @@
 // by area into the cloud this stage outputs (for the chamfer stage). The
 // last mesh is written as PLY with each vertex's variance.
 //
+// form: exact fits every training point (a bordered Cholesky update per
+// touch) and refuses a touch beyond exact_max_points; sparse summarises them
+// by inducing points (touchcloud/gp/sparse_implicit_surface.hpp) for tens of
+// thousands of points.
+//
 // The palm's normal comes from the tactile cloud's sensor pose (its z axis:
 // the palm presses along -z); without the tactile input each touch's normal
 // is its patch's plane normal, turned away from the centroid of all points.
@@ -15,11 +20,13 @@
 // (top_surface.hpp), for next_touch to choose where it is least certain.
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "top_surface.hpp"
 
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
+#include "touchcloud/gp/sparse_implicit_surface.hpp"
 #include "touchcloud/io/mesh_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
@@ -28,19 +35,35 @@
 
 namespace touchcloud {
 
+enum class ImplicitForm { exact, sparse };
+
 class GpisSurface final : public Stage {
   gp::ImplicitSurfaceOptions options_;
+  ImplicitForm form_ = ImplicitForm::exact;
+  std::int64_t exact_max_points_ = 10000;
+  gp::SparseImplicitOptions sparse_;
   std::int64_t cells_ = 64;
   double margin_mm_ = 5.0;
   std::int64_t samples_ = 20000;
   std::optional<std::string> mesh_path_;
   std::int64_t threads_ = 0;
-  std::shared_ptr<gp::ImplicitSurface> model_;  // shared with the `surface` output until the next touch
+  // Shared with the `surface` output until the next touch.
+  std::variant<std::shared_ptr<gp::ImplicitSurface>, std::shared_ptr<gp::SparseImplicitSurface>> model_;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
   SurfaceModelPtr surface_;
 
   void declare_parameters(ParameterSet& p) override {
+    p.add("form", form_, ImplicitForm::exact, {{"exact", ImplicitForm::exact}, {"sparse", ImplicitForm::sparse}})
+        .doc("exact: every training point in the GP (refused beyond exact_max_points); sparse: inducing points "
+             "summarise them, for tens of thousands of points");
+    p.add("exact_max_points", exact_max_points_, std::int64_t{10000}).at_least(1).unit("points")
+        .doc("the exact form refuses a touch that would take it beyond this many training points (use form: sparse); "
+             "its per-touch update passes 50 ms at about 2,700 points on one core and grows as the points squared "
+             "(docs/benchmarks.md)");
+    p.add("inducing_spacing_mm", sparse_.inducing_spacing_mm, 8.0).unit("mm").above(0.0)
+        .doc("sparse form: least distance between two inducing sites (each a signed pair across the surface); "
+             "smaller follows the exact form more closely at a cost that grows as the sites squared");
     p.add("kernel", options_.kernel, gp::ImplicitKernelKind::thin_plate,
           {{"thin_plate", gp::ImplicitKernelKind::thin_plate},
            {"matern32", gp::ImplicitKernelKind::matern32},
@@ -75,7 +98,13 @@ class GpisSurface final : public Stage {
     if (mesh_path_ && std::filesystem::path(*mesh_path_).extension() != ".ply")
       throw ParameterError("mesh", "'" + *mesh_path_ + "': a mesh is written as .ply");
   }
-  void on_configure(RunContext&) override { model_ = std::make_shared<gp::ImplicitSurface>(options_); }
+  void on_configure(RunContext&) override {
+    options_.max_training_points = exact_max_points_;
+    if (form_ == ImplicitForm::exact)
+      model_ = std::make_shared<gp::ImplicitSurface>(options_);
+    else
+      model_ = std::make_shared<gp::SparseImplicitSurface>(options_, sparse_);
+  }
 
   void declare_ports(PortSet& ports) override {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
@@ -97,6 +126,33 @@ class GpisSurface final : public Stage {
     ports.artifact(ArtifactRole::reconstructed_surface, "the last mesh (PLY) with per-vertex variance, with mesh set");
   }
 
+  template <class Model>
+  void update_and_mesh(std::shared_ptr<Model>& model, const gp::ImplicitTouch& touch, StageIO& io, RunContext& ctx) {
+    // A model handed out as `surface` does not change: the next touch goes to
+    // a copy while another stage still holds it.
+    surface_.reset();
+    if (model.use_count() > 1) model = std::make_shared<Model>(*model);
+    const gp::ImplicitUpdate update = model->add(touch);  // InputError names a touch it refuses
+    static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
+    ctx.metric("update_path", kPath[static_cast<int>(update.path)]);
+    if (update.lml) ctx.metric("lml", *update.lml);
+    ctx.metric("training_points", static_cast<double>(update.training_points), "points");
+    ctx.metric("scale_mm", model->hyperparameters().lengthscale_mm, "mm");
+    ctx.metric("signal_variance_mm2", model->hyperparameters().signal_variance_mm2, "mm^2");
+    ctx.metric("noise_variance_mm2", model->hyperparameters().noise_variance_mm2, "mm^2");
+    ctx.metric("jitter_mm2", update.jitter_mm2, "mm^2");
+
+    const gp::SampleGrid grid = gp::grid_around(model->contact_points(), margin_mm_, static_cast<int>(cells_));
+    mesh_ = gp::zero_level_set(grid, model->mean(grid.sample_points(), static_cast<int>(threads_)));
+    if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
+    ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
+    if (io.wants("surface")) {
+      // Down from the top of the meshed box, in 1 mm steps (then bisected).
+      const double top_z_mm = model->contact_points().col(2).maxCoeff() + margin_mm_;
+      surface_ = std::make_shared<ImplicitTopSurface<Model>>(model, top_z_mm, 1.0);
+    }
+  }
+
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud) throw RunError("no cloud to add");
@@ -114,34 +170,12 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = (*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
-    // A model handed out as `surface` does not change: the next touch goes to
-    // a copy while another stage still holds it.
-    surface_.reset();
-    if (model_.use_count() > 1) model_ = std::make_shared<gp::ImplicitSurface>(*model_);
-    const gp::ImplicitUpdate update = model_->add(touch);  // InputError names a touch it refuses
-    static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
-    ctx.metric("update_path", kPath[static_cast<int>(update.path)]);
-    if (update.lml) ctx.metric("lml", *update.lml);
-    ctx.metric("training_points", static_cast<double>(update.training_points), "points");
-    ctx.metric("scale_mm", model_->hyperparameters().lengthscale_mm, "mm");
-    ctx.metric("signal_variance_mm2", model_->hyperparameters().signal_variance_mm2, "mm^2");
-    ctx.metric("noise_variance_mm2", model_->hyperparameters().noise_variance_mm2, "mm^2");
-    ctx.metric("jitter_mm2", update.jitter_mm2, "mm^2");
-
-    const gp::SampleGrid grid = gp::grid_around(model_->contact_points(), margin_mm_, static_cast<int>(cells_));
-    mesh_ = gp::zero_level_set(grid, model_->mean(grid.sample_points(), static_cast<int>(threads_)));
-    if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
-    ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
+    std::visit([&](auto& model) { update_and_mesh(model, touch, io, ctx); }, model_);
     auto out = std::make_shared<PointCloud>();
     for (const Eigen::Vector3d& p : scoring::sample_surface(mesh_, static_cast<std::size_t>(samples_), ctx.rng()()))
       out->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
     cloud_ = out;
     io.output("cloud", cloud_);
-    if (io.wants("surface")) {
-      // Down from the top of the meshed box, in 1 mm steps (then bisected).
-      const double top_z_mm = model_->contact_points().col(2).maxCoeff() + margin_mm_;
-      surface_ = std::make_shared<ImplicitTopSurface>(model_, top_z_mm, 1.0);
-    }
     if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
   }
 
@@ -149,7 +183,7 @@ class GpisSurface final : public Stage {
     if (mesh_.triangles.empty()) return;
     Eigen::MatrixX3d vertices(static_cast<Eigen::Index>(mesh_.vertices.size()), 3);
     for (std::size_t i = 0; i < mesh_.vertices.size(); ++i) vertices.row(static_cast<Eigen::Index>(i)) = mesh_.vertices[i];
-    const Eigen::VectorXd variance = model_->variance(vertices);
+    const Eigen::VectorXd variance = std::visit([&](const auto& model) { return model->variance(vertices); }, model_);
     ctx.metric("max_vertex_variance_mm2", variance.maxCoeff(), "mm^2");
     ctx.metric("mean_vertex_variance_mm2", variance.mean(), "mm^2");
     if (!mesh_path_) return;

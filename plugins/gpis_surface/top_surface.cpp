@@ -8,11 +8,13 @@ namespace {
 constexpr int kBisections = 8;  // a 1 mm step to ~4 um
 }  // namespace
 
-ImplicitTopSurface::ImplicitTopSurface(std::shared_ptr<const gp::ImplicitSurface> model, double top_z_mm,
+template <class Model>
+ImplicitTopSurface<Model>::ImplicitTopSurface(std::shared_ptr<const Model> model, double top_z_mm,
                                        double step_mm)
     : model_(std::move(model)), top_z_mm_(top_z_mm), step_mm_(step_mm) {}
 
-Eigen::MatrixX3d ImplicitTopSurface::surface_points(const Eigen::MatrixX2d& xy) const {
+template <class Model>
+Eigen::MatrixX3d ImplicitTopSurface<Model>::surface_points(const Eigen::MatrixX2d& xy) const {
   const Eigen::Index m = xy.rows();
   const int levels = std::max(1, static_cast<int>(std::ceil(std::max(top_z_mm_, 0.0) / step_mm_))) + 1;
   // Every column at every level in one pass of the mean: level k at
@@ -54,22 +56,29 @@ Eigen::MatrixX3d ImplicitTopSurface::surface_points(const Eigen::MatrixX2d& xy) 
   return points;
 }
 
-Eigen::VectorXd ImplicitTopSurface::mean(const Eigen::MatrixX2d& xy) const { return surface_points(xy).col(2); }
+template <class Model>
+Eigen::VectorXd ImplicitTopSurface<Model>::mean(const Eigen::MatrixX2d& xy) const { return surface_points(xy).col(2); }
 
-Eigen::VectorXd ImplicitTopSurface::variance(const Eigen::MatrixX2d& xy) const {
+template <class Model>
+Eigen::VectorXd ImplicitTopSurface<Model>::variance(const Eigen::MatrixX2d& xy) const {
   return model_->variance(surface_points(xy));
 }
 
-std::optional<std::array<double, 2>> ImplicitTopSurface::data_z_range_mm() const {
+template <class Model>
+std::optional<std::array<double, 2>> ImplicitTopSurface<Model>::data_z_range_mm() const {
   const Eigen::MatrixX3d& c = model_->contact_points();
   if (c.rows() == 0) return std::nullopt;
   return std::array<double, 2>{c.col(2).minCoeff(), c.col(2).maxCoeff()};
 }
 
-std::map<std::string, double> ImplicitTopSurface::hyperparameters() const {
+template <class Model>
+std::map<std::string, double> ImplicitTopSurface<Model>::hyperparameters() const {
   const gp::Hyperparameters& h = model_->hyperparameters();
   return {{"scale_mm", h.lengthscale_mm}, {"signal_variance_mm2", h.signal_variance_mm2},
           {"noise_variance_mm2", h.noise_variance_mm2}};
 }
+
+template class ImplicitTopSurface<gp::ImplicitSurface>;
+template class ImplicitTopSurface<gp::SparseImplicitSurface>;
 
 }  // namespace touchcloud

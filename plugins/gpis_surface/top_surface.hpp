@@ -11,15 +11,18 @@
 #include <memory>
 
 #include "touchcloud/gp/implicit_surface.hpp"
+#include "touchcloud/gp/sparse_implicit_surface.hpp"
 #include "touchcloud/types/surface_model.hpp"
 
 namespace touchcloud {
 
+// Model: gp::ImplicitSurface or gp::SparseImplicitSurface (instantiated for both).
+template <class Model>
 class ImplicitTopSurface final : public SurfaceModel {
  public:
   // `model` must not change while this view lives (the stage copies it
   // before the next touch if this view is still held).
-  ImplicitTopSurface(std::shared_ptr<const gp::ImplicitSurface> model, double top_z_mm, double step_mm);
+  ImplicitTopSurface(std::shared_ptr<const Model> model, double top_z_mm, double step_mm);
 
   std::size_t training_size() const override { return static_cast<std::size_t>(model_->training_size()); }
   Eigen::VectorXd mean(const Eigen::MatrixX2d& xy) const override;
@@ -30,7 +33,7 @@ class ImplicitTopSurface final : public SurfaceModel {
  private:
   Eigen::MatrixX3d surface_points(const Eigen::MatrixX2d& xy) const;
 
-  std::shared_ptr<const gp::ImplicitSurface> model_;
+  std::shared_ptr<const Model> model_;
   double top_z_mm_, step_mm_;
 };
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <gtest/gtest.h>
 
 #include "touchcloud/gp/implicit_surface.hpp"
 
@@ -84,5 +85,35 @@ struct TorusObject {
     return out;
   }
 };
+
+inline Eigen::MatrixX3d one_row(const Eigen::Vector3d& p) { return p.transpose(); }
+
+// Where a model's mean crosses 0 between a (negative) and b (positive), by
+// bisection; Model: gp::ImplicitSurface or gp::SparseImplicitSurface.
+template <class Model>
+Eigen::Vector3d zero_crossing(const Model& s, Eigen::Vector3d a, Eigen::Vector3d b) {
+  EXPECT_LT(s.mean(one_row(a))[0], 0);
+  EXPECT_GT(s.mean(one_row(b))[0], 0);
+  for (int i = 0; i < 40; ++i) {
+    const Eigen::Vector3d m = 0.5 * (a + b);
+    (s.mean(one_row(m))[0] < 0 ? a : b) = m;
+  }
+  return 0.5 * (a + b);
+}
+
+// The largest error of the sphere's radius along 26 rays from its centre.
+template <class Model>
+double worst_radius_error(const Model& s, const SphereObject& sphere) {
+  double worst = 0;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k) {
+        if (!i && !j && !k) continue;
+        const Eigen::Vector3d d = Eigen::Vector3d(i, j, k).normalized();
+        const Eigen::Vector3d p = zero_crossing(s, sphere.centre_mm, sphere.centre_mm + 2 * sphere.radius_mm * d);
+        worst = std::max(worst, std::abs((p - sphere.centre_mm).norm() - sphere.radius_mm));
+      }
+  return worst;
+}
 
 }  // namespace touchcloud::test

@@ -15,6 +15,8 @@
 using namespace touchcloud;
 using touchcloud::test::SphereObject;
 using touchcloud::test::TorusObject;
+using touchcloud::test::one_row;
+using touchcloud::test::zero_crossing;
 
 namespace {
 
@@ -24,19 +26,6 @@ gp::ImplicitSurface implicit_fitted(const std::vector<gp::ImplicitTouch>& touche
   gp::ImplicitSurface s(o);
   for (const auto& t : touches) s.add(t);
   return s;
-}
-
-Eigen::MatrixX3d one_row(const Eigen::Vector3d& p) { return p.transpose(); }
-
-// Where the mean crosses 0 between a (negative) and b (positive), by bisection.
-Eigen::Vector3d zero_crossing(const gp::ImplicitSurface& s, Eigen::Vector3d a, Eigen::Vector3d b) {
-  EXPECT_LT(s.mean(one_row(a))[0], 0);
-  EXPECT_GT(s.mean(one_row(b))[0], 0);
-  for (int i = 0; i < 40; ++i) {
-    const Eigen::Vector3d m = 0.5 * (a + b);
-    (s.mean(one_row(m))[0] < 0 ? a : b) = m;
-  }
-  return 0.5 * (a + b);
 }
 
 }  // namespace
@@ -52,16 +41,7 @@ TEST(ImplicitSurface, SphereRadiusAlongRays) {
     gp::ImplicitSurfaceOptions o;
     o.kernel = kernel;
     const gp::ImplicitSurface s = implicit_fitted(sphere.touches(40), o);
-    double worst = 0;
-    for (int i = -1; i <= 1; ++i)
-      for (int j = -1; j <= 1; ++j)
-        for (int k = -1; k <= 1; ++k) {
-          if (!i && !j && !k) continue;
-          const Eigen::Vector3d d = Eigen::Vector3d(i, j, k).normalized();
-          const Eigen::Vector3d p = zero_crossing(s, sphere.centre_mm, sphere.centre_mm + 2 * sphere.radius_mm * d);
-          worst = std::max(worst, std::abs((p - sphere.centre_mm).norm() - sphere.radius_mm));
-        }
-    EXPECT_LT(worst, 0.25) << gp::to_string(kernel);
+    EXPECT_LT(test::worst_radius_error(s, sphere), 0.25) << gp::to_string(kernel);
   }
 }
 

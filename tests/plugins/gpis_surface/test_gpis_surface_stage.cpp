@@ -38,6 +38,14 @@ TactileCloudPtr tactile_for(const gp::ImplicitTouch& t) {
   return tactile;
 }
 
+// The largest distance of a point of `cloud` from the sphere's surface.
+double farthest_off(const PointCloud& cloud, const test::SphereObject& sphere) {
+  double worst = 0;
+  for (const auto& p : cloud.points)
+    worst = std::max(worst, std::abs((p.getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm));
+  return worst;
+}
+
 class GpisSurfaceStage : public ::testing::Test {
  protected:
   test::TempDir dir_;
@@ -59,9 +67,7 @@ TEST_F(GpisSurfaceStage, CloudOnTheSphereAndMeshWithVariance) {
     out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
   h.finish();
   ASSERT_EQ(out->size(), 2000u);
-  double worst = 0;
-  for (const auto& p : out->points)
-    worst = std::max(worst, std::abs((p.getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm));
+  const double worst = farthest_off(*out, sphere);
   EXPECT_LT(worst, 0.5);  // the tolerance of tests/gp/test_level_set_mesh.cpp
   EXPECT_GE(h.metric("max_vertex_variance_mm2"), h.metric("mean_vertex_variance_mm2"));
   EXPECT_GE(h.metric("mean_vertex_variance_mm2"), 0.0);
@@ -91,6 +97,37 @@ TEST_F(GpisSurfaceStage, RefusesTouchesWithoutSide) {
     FAIL() << "accepted";
   } catch (const RunError& e) {
     EXPECT_NE(std::string(e.what()).find("no touched points yet"), std::string::npos) << e.what();
+  }
+}
+
+// form: sparse (inducing sites 5 mm apart) meets the exact form's tolerance on the sphere.
+TEST_F(GpisSurfaceStage, SparseFormOnTheSphere) {
+  test::StageHarness h("gpis_surface", {{"form", std::string("sparse")}, {"inducing_spacing_mm", 5.0},
+                                        {"cells", std::int64_t{24}}, {"samples", std::int64_t{2000}},
+                                        {"reselect_growth", 1.0}});
+  h.configure();
+  const test::SphereObject sphere;
+  CloudConstPtr out;
+  for (const auto& t : sphere.touches(40))
+    out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
+  h.finish();
+  const double worst = farthest_off(*out, sphere);
+  EXPECT_LT(worst, 0.5);
+  EXPECT_GE(h.metric("mean_vertex_variance_mm2"), 0.0);
+}
+
+// The exact form refuses a touch beyond exact_max_points, naming the sparse form.
+TEST_F(GpisSurfaceStage, ExactRefusesBeyondItsPointCount) {
+  test::StageHarness h("gpis_surface", {{"exact_max_points", std::int64_t{50}}});
+  h.configure();
+  const auto touches = test::SphereObject().touches(3);  // 21 training points each
+  h.process({{"cloud", cloud_of(touches[0])}, {"tactile", tactile_for(touches[0])}}, {"cloud"});
+  h.process({{"cloud", cloud_of(touches[1])}, {"tactile", tactile_for(touches[1])}}, {"cloud"});
+  try {
+    h.process({{"cloud", cloud_of(touches[2])}, {"tactile", tactile_for(touches[2])}}, {"cloud"});
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sparse form"), std::string::npos) << e.what();
   }
 }
 

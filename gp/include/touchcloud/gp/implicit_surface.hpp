@@ -49,6 +49,9 @@ struct ImplicitSurfaceOptions {
   double max_noise_mm = 0.5;   // noise standard deviation the selection may choose, at most
   double min_noise_mm = 0.01;  // and at least (keeps repeated touches factorisable)
   int max_iterations = 40;     // L-BFGS iterations of a selection
+  // The exact form refuses a touch that would take it beyond this many
+  // training points (its update and prediction grow as n^2, its selection n^3).
+  std::optional<Eigen::Index> max_training_points;
   JitterSchedule jitter;
   void validate() const;  // InputError naming the field, its value and the rule
 };
@@ -66,11 +69,32 @@ struct ImplicitUpdate {
   bool normals_estimated = false;     // the touch came without normals
 };
 
+// The training set both forms fit: contact points (f = 0) and signed points.
+struct ImplicitTraining {
+  Eigen::MatrixX3d x;  // training points, rows [0, n) in use
+  Eigen::VectorXd f;   // their signed distances
+  Eigen::MatrixX3d contacts{0, 3};
+  Eigen::Index n = 0;
+  double diameter_mm() const;  // of the training points' bounding box
+};
+
+// A touch's outward normals: checked, or estimated when it has none (see the
+// top); InputError naming `where` for a touch refused. `contacts`: the
+// points touched before.
+Eigen::MatrixX3d checked_touch_normals(const ImplicitTouch& touch, const Eigen::MatrixX3d& contacts,
+                                       const std::string& where, bool& estimated);
+// Training points a touch of `contacts` points adds (with its signed pairs).
+Eigen::Index implicit_rows_of(Eigen::Index contacts, const ImplicitSurfaceOptions& options);
+// Appends the touch's contact points and its signed pairs.
+void append_implicit_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals,
+                              const ImplicitSurfaceOptions& options, ImplicitTraining& training);
+
 class ImplicitSurface {
  public:
   explicit ImplicitSurface(ImplicitSurfaceOptions options = {});  // InputError on invalid options
 
-  // Adds one touch. InputError (the model unchanged) for a touch without
+  // Adds one touch. InputError (the model unchanged) for a touch beyond
+  // max_training_points, without
   // points, with a value that is not finite, normals that are not unit
   // length or not one per point, or no normals where the side cannot be told
   // (see the top). RunError when the covariance cannot be factorised.
@@ -84,8 +108,8 @@ class ImplicitSurface {
   Eigen::VectorXd mean(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, int threads = 1) const;
   Eigen::VectorXd variance(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, std::size_t* clamped = nullptr) const;
 
-  Eigen::Index training_size() const { return n_; }
-  const Eigen::MatrixX3d& contact_points() const { return contacts_; }
+  Eigen::Index training_size() const { return data_.n; }
+  const Eigen::MatrixX3d& contact_points() const { return data_.contacts; }
   std::size_t touches() const { return touches_; }
   const Hyperparameters& hyperparameters() const { return h_; }
   const ImplicitSurfaceOptions& options() const { return options_; }
@@ -93,13 +117,11 @@ class ImplicitSurface {
   double prior_radius_mm() const { return radius_; }
 
  private:
-  void append_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals);
   double prior(const Eigen::Vector3d& p) const { return (p - centre_).norm() - radius_; }
   void set_prior();
   // thin_plate: whether R still spans the data (its kernel is a covariance
   // only up to R); a touch that reaches farther selects again.
   bool scale_covers_data() const;
-  double diameter_mm() const;  // of the training points' bounding box
   ImplicitUpdate select();
   void refactorise();           // L from all training points at h_, with the jitter schedule
   bool extend_factor(Eigen::Index from);  // bordered update for rows [from, n_); false: not positive
@@ -108,10 +130,7 @@ class ImplicitSurface {
 
   ImplicitSurfaceOptions options_;
   Hyperparameters h_;
-  Eigen::MatrixX3d x_;  // training points, rows [0, n_) in use
-  Eigen::VectorXd f_;   // their signed distances
-  Eigen::MatrixX3d contacts_{0, 3};
-  Eigen::Index n_ = 0;
+  ImplicitTraining data_;
   std::size_t touches_ = 0;
   Eigen::Index selected_at_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();

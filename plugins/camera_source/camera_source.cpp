@@ -172,7 +172,7 @@ class CameraSource final : public Stage {
     for (int i = 0; i < warmup_frames_; ++i) {
       std::optional<camera::Shot> shot = feed_->next(queue_.frame_timeout_s);
       if (!shot) throw InputError(source() + " ends within its warm-up frames");
-      gaps_.see(shot->stamp.sequence);
+      gaps_.see(shot->stamp.sequence, feed_->first_sequence());
     }
     cv::Mat reference;
     if (reference_frames_ > 0) {
@@ -180,7 +180,7 @@ class CameraSource final : public Stage {
       for (int i = 0; i < reference_frames_; ++i) {
         std::optional<camera::Shot> shot = feed_->next(queue_.frame_timeout_s);
         if (!shot) throw InputError(source() + " ends within its reference frames");
-        gaps_.see(shot->stamp.sequence);
+        gaps_.see(shot->stamp.sequence, feed_->first_sequence());
         if (sum.empty()) sum = cv::Mat::zeros(shot->image.size(), CV_64FC3);
         cv::accumulate(shot->image, sum);
       }
@@ -208,7 +208,7 @@ class CameraSource final : public Stage {
     if (!shot)
       throw InputError(source() + " has no frame left after " + std::to_string(tally_.processed()) +
                        " processed (end the loop with until: <this stage>.done)");
-    gaps_.see(shot->stamp.sequence);
+    gaps_.see(shot->stamp.sequence, feed_->first_sequence());
     tally_.handed_on(shot->captured_at);
     ctx.metric("frames_dropped", static_cast<double>(gaps_.dropped()), "frames");
 

@@ -42,6 +42,7 @@ void FrameFeed::capture_loop() {
       if (stopping_) return;
       if (!shot) break;
       ++captured_;
+      if (!first_sequence_) first_sequence_ = shot->stamp.sequence;
       if (queue_.size() >= capacity_) {
         if (when_behind_ == WhenBehind::drop_oldest) {
           queue_.pop_front();
@@ -96,6 +97,11 @@ bool FrameFeed::ended(double timeout_s) {
 std::int64_t FrameFeed::captured() const {
   std::lock_guard lock(mutex_);
   return captured_;
+}
+
+std::optional<std::int64_t> FrameFeed::first_sequence() const {
+  std::lock_guard lock(mutex_);
+  return first_sequence_;
 }
 
 std::int64_t FrameFeed::dropped() const {

@@ -5,8 +5,9 @@
 
 namespace touchcloud::camera {
 
-void SequenceGaps::see(std::int64_t sequence) {
+void SequenceGaps::see(std::int64_t sequence, std::optional<std::int64_t> first) {
   if (last_ && sequence > *last_ + 1) dropped_ += sequence - *last_ - 1;
+  if (!last_ && first && sequence > *first) dropped_ += sequence - *first;
   last_ = sequence;
 }
 

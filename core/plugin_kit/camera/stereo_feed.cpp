@@ -34,7 +34,7 @@ std::pair<cv::Mat, cv::Mat> StereoFeed::split(const cv::Mat& frame, const std::s
 
 std::optional<Shot> StereoFeed::take(FrameFeed& feed, SequenceGaps& gaps, double timeout_s) {
   std::optional<Shot> shot = feed.next(timeout_s);
-  if (shot) gaps.see(shot->stamp.sequence);
+  if (shot) gaps.see(shot->stamp.sequence, feed.first_sequence());
   return shot;
 }
 

@@ -10,6 +10,7 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "touchcloud/plugin_kit/camera/capture.hpp"
@@ -37,6 +38,7 @@ class FrameFeed {
   bool ended(double timeout_s);
   std::int64_t captured() const;
   std::int64_t dropped() const;  // lost from a full queue
+  std::optional<std::int64_t> first_sequence() const;  // of the first frame captured
   SourceKind source_kind() const { return capture_->kind(); }
   const std::string& source() const { return capture_->settings().source; }
 
@@ -53,6 +55,7 @@ class FrameFeed {
   std::condition_variable changed_;
   std::deque<Shot> queue_;
   std::int64_t captured_ = 0, dropped_ = 0;
+  std::optional<std::int64_t> first_sequence_;
   bool ended_ = false, stopping_ = false;
   std::exception_ptr error_;
   std::thread thread_;

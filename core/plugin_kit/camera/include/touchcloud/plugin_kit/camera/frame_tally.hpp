@@ -20,8 +20,10 @@ using Clock = std::chrono::steady_clock;
 // One camera's sequence numbers: a step of more than one is frames lost.
 class SequenceGaps {
  public:
-  // Counts the gap before `sequence` (none before the first).
-  void see(std::int64_t sequence);
+  // Counts the gap before `sequence`; before the first one seen, the gap
+  // from `first`, the first sequence number the camera delivered (frames
+  // lost from the queue before anything was taken from it).
+  void see(std::int64_t sequence, std::optional<std::int64_t> first = std::nullopt);
   std::int64_t dropped() const { return dropped_; }
 
  private:

@@ -32,7 +32,7 @@ REPEATS = 4  # frames of each press
 def presses(tmp_path_factory):
     """The GelSight-type sample presses as an FFV1 video at 2 frames/s: the
     gel at rest, then each press for four frames (21 frames, 10.5 s: a
-    browser starting on a loaded machine still sees several presses)."""
+    browser slow to start (seconds on 2 shared cores) still sees several presses)."""
     root = SOURCE / "sample_clouds/gelsight_presses"
     lines = (root / "index.csv").read_text().splitlines()[1:]
     frames = [cv2.imread(str(root / line.split(",")[2])) for line in lines]

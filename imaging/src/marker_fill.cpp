@@ -94,14 +94,17 @@ void MarkerFill::fill_dots(const cv::Mat& bgr, const std::vector<Marker>& dots, 
       for (int u = first; u <= last; ++u) {
         const double dx = u - cx, dy = v - cy, r2 = dx * dx + dy * dy;
         if (r2 <= reach2 || r2 > outer2 || row[u]) continue;
-        // The normal equations (Eigen's rank update per pixel was a call:
-        // the fill's cost).
+        // The normal equations' lower triangle and right sides, in scalars
+        // (Eigen's rank update per pixel was a call, and a vector built
+        // per pixel stalls on reading back its halves: the fill's cost).
         const double x = dx * scale, y = dy * scale;
-        Eigen::Matrix<double, 6, 1> t;
-        t << 1, x, y, x * x, x * y, y * y;
+        const double t[6] = {1, x, y, x * x, x * y, y * y};
         const cv::Vec3b& p = colour[u];
-        ata.noalias() += t * t.transpose();  // the lower triangle is the fit's
-        atb.noalias() += t * Eigen::RowVector3d(p[0], p[1], p[2]);
+        const double c[3] = {static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])};
+        for (int i = 0; i < 6; ++i) {
+          for (int j = i; j < 6; ++j) ata(j, i) += t[i] * t[j];
+          for (int k = 0; k < 3; ++k) atb(i, k) += t[i] * c[k];
+        }
         ++ring;
       }
     }

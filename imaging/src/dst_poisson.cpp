@@ -54,16 +54,16 @@ DstPoisson::DstPoisson(int width_px, int height_px)
   // H(l + 1) down the column, d_k = 2 cos(pi (k + 1) / (columns + 1)) - 4,
   // with H = 0 above the first and below the last interior row.
   auto row_eigenvalue = [&](int k) { return 2 * std::cos(M_PI * (k + 1) / (columns_ + 1)) - 2; };
+  // With ones beside the diagonal, the eliminated super-diagonal is the
+  // reciprocal pivot itself: one table serves both sweeps.
   inverse_pivot_.create(ny_, columns_, CV_64FC1);
-  upper_.create(ny_, columns_, CV_64FC1);
   for (int k = 0; k < columns_; ++k) {
     const double d = row_eigenvalue(k) - 2;
-    double upper = 0;
+    double inverse = 0;
     for (int l = 0; l < ny_; ++l) {
-      const double pivot = d - upper;  // |d| > 2 keeps every pivot below -1
-      inverse_pivot_.at<double>(l, k) = 1 / pivot;
-      upper = 1 / pivot;
-      upper_.at<double>(l, k) = upper;
+      const double pivot = d - inverse;  // |d| > 2 keeps every pivot below -1
+      inverse = 1 / pivot;
+      inverse_pivot_.at<double>(l, k) = inverse;
     }
   }
   const int extra = columns_ - nx_;
@@ -162,7 +162,7 @@ void DstPoisson::solve_columns(cv::Mat& spectrum) const {
   for (int l = ny_ - 2; l >= 0; --l) {
     double* __restrict row = spectrum.ptr<double>(l);
     const double* __restrict below = spectrum.ptr<double>(l + 1);
-    const double* __restrict upper = upper_.ptr<double>(l);
+    const double* __restrict upper = inverse_pivot_.ptr<double>(l);
     for (std::size_t k = 0; k < n; ++k) row[k] -= upper[k] * below[k];
   }
 }

@@ -58,8 +58,9 @@ class DstPoisson {
   void* plan_ = nullptr;    // fftw_plan: every pair of rows' DFT
   cv::Mat rows_, spectrum_;  // ny_ x columns_: the divergence, then the transformed height
   // Thomas' elimination for each row frequency k, fixed by the size: the
-  // reciprocal pivots and the eliminated super-diagonal (ny x columns_ each).
-  cv::Mat inverse_pivot_, upper_;
+  // reciprocal pivots, which are also the eliminated super-diagonal (ny x
+  // columns_).
+  cv::Mat inverse_pivot_;
   // The extra columns' capacitance: each one's sine (extra x columns_), the
   // column direction's sine modes scaled to be their own inverse (ny x ny),
   // and per column mode the inverse of the extra columns' response (ny x

@@ -29,12 +29,11 @@ import json
 import os
 import platform
 import statistics
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from mpi_launch import run_each  # noqa: E402
+from mpi_launch import run_all  # noqa: E402
 
 SHAPES = ["sphere", "pebble", "step", "torus", "mug"]
 PIPELINES = {"height field (GP, max variance)": "pipelines/fox_mask_active.yaml",
@@ -61,21 +60,6 @@ def command(args, pipeline, shape, seed, out):
             "--scene", f"sample_clouds/closed_objects/{shape}/scene.yaml",
             "--set", f"explore.max_iterations={args.touches}", "--set", "score.metrics=all",
             "--set", f"score.fscore_threshold_mm={args.fscore_mm}"]
-
-
-def run_all(commands, ranks, workdir):
-    if ranks > 1:
-        failed = run_each(commands, ranks, workdir)
-        if failed:
-            cmd, status, stderr = failed[0]
-            raise RuntimeError(f"{len(failed)} runs failed; {' '.join(cmd)} ({status}):\n{stderr}")
-        return
-    for i, cmd in enumerate(commands, 1):
-        done = subprocess.run(cmd, capture_output=True, text=True)
-        if done.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
-        print(f"\r{i}/{len(commands)} runs", end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
 
 
 def read_run(out):

@@ -17,7 +17,7 @@ namespace touchcloud::gp {
 
 namespace {
 
-constexpr Eigen::Index kInducingQueryBlock = 512;  // variance: L_uu^-1 K(U, block) holds m x this many doubles
+constexpr Eigen::Index kInducingQueryBlock = 512;  // variance: K(U, block) and its product hold m x this many doubles each
 // New inducing rows: A's columns this many at a time (m x 256 doubles, about
 // 1.3 MB at m = 620, stay in cache between the block's two products).
 constexpr Eigen::Index kColumnBlock = 256;

@@ -198,3 +198,25 @@ TEST(TouchFromAnySide, SphereRadiusFromAnImplicitSurfaceOfSideTouches) {
     EXPECT_NEAR(0.5 * (lo + hi), kSphereRadius, 0.05) << ray.transpose();
   }
 }
+
+TEST(TouchFromAnySide, AnApproachFrameThatIsNotRigidIsRefused) {
+  TempDir dir;
+  simulation::GelStereoSimulation sim(closed_scene(dir, sphere_obj(kSphereRadius), kSphereCentre), 1);
+  Eigen::Isometry3d stretched = approach_through(kSphereCentre, {-1, 0, 0});
+  stretched.linear() *= 1.1;
+  const std::string what = input_error([&] { sim.step(simulation::PressTarget({0, 0}, stretched), false); });
+  EXPECT_NE(what.find("not a rigid transform"), std::string::npos) << what;
+}
+
+TEST(TouchFromAnySide, ATouchThatMissesTheObjectAndTheTableFails) {
+  TempDir dir;
+  simulation::GelStereoSimulation sim(closed_scene(dir, sphere_obj(kSphereRadius), kSphereCentre), 1);
+  // Horizontal, 100 mm above the sphere: nothing on its line.
+  const simulation::PressTarget past({0, 0}, approach_through(kSphereCentre + Eigen::Vector3d(0, 0, 100), {-1, 0, 0}));
+  try {
+    press_touch(sim, past);
+    ADD_FAILURE() << "no RunError";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("misses the object and the table"), std::string::npos) << e.what();
+  }
+}

@@ -55,8 +55,9 @@ std::optional<ReachRefusal> refuse_approach(const ApproachView& view, const Eige
   // down or sideways, else its rim.
   const double below_centre = d.z() <= 0 ? r : r * std::sqrt(std::max(0.0, 1.0 - d.z() * d.z()));
   const double centre_z = contact.z() - r * d.z();  // the sphere's centre at contact
-  const double lowest = std::min(centre_z, centre_z - limits.standoff_mm * d.z()) - below_centre;
-  constexpr double kTableSlackMm = 1e-6;  // a touch of the table itself from above reaches z = 0
+  const double lowest =
+      std::min(centre_z - limits.standoff_mm * d.z(), centre_z + limits.press_mm * d.z()) - below_centre;
+  constexpr double kTableSlackMm = 1e-6;
   if (lowest < -kTableSlackMm) return ReachRefusal::Table;
   const double tilt_deg = std::acos(std::clamp(-d.z(), -1.0, 1.0)) * 180.0 / M_PI;
   if (tilt_deg > limits.max_tilt_deg + 1e-9) return ReachRefusal::Workspace;

@@ -79,3 +79,18 @@ TEST(ApproachReach, ATiltBeyondTheRobotsIsRefusedForTheWorkspace) {
   ASSERT_TRUE(refused);
   EXPECT_STREQ(simulation::to_string(*refused), "workspace");
 }
+
+// The press goes on past first contact: a press onto the table beside the
+// object would push the gel into it.
+TEST(ApproachReach, APressIntoTheTableIsRefusedForTheTable) {
+  TempDir dir;
+  const auto mesh = placed_torus(dir);
+  const Eigen::Isometry3d beside = approach_through({100, 0, 0}, {0, 0, -1});
+  const simulation::ApproachView view(mesh, beside.inverse());
+  simulation::ApproachLimits limits;
+  const auto refused = simulation::refuse_approach(view, beside, {0, 0}, std::nullopt, limits);
+  ASSERT_TRUE(refused);
+  EXPECT_STREQ(simulation::to_string(*refused), "table");
+  limits.press_mm = 0;  // only touching it
+  EXPECT_FALSE(simulation::refuse_approach(view, beside, {0, 0}, std::nullopt, limits));
+}

@@ -31,10 +31,10 @@ std::vector<double> apex_gaps_mm(const ObjectSurface& object, const WorkspaceGri
 
 // Touches from any side: why one cannot be made as planned, found before it
 // is made. The gel's path is its hemisphere swept along the approach from a
-// stand-off to the first contact at the target.
+// stand-off to the first contact at the target and on by the press past it.
 enum class ReachRefusal {
   Workspace,  // the approach tilts further from straight down than the robot goes, or the target lies outside the workspace
-  Table,      // the gel's path dips below the table before contact (an approach from below, or too flat too low)
+  Table,      // the gel's path dips below the table (an approach from below, or too flat too low)
   Object,     // the object stops the gel more than the tolerance before the target (a rim, the near side of a ring)
   Nothing,    // the approach meets neither the object nor the table
 };
@@ -43,6 +43,7 @@ const char* to_string(ReachRefusal reason);
 struct ApproachLimits {
   double gel_radius_mm = 32.5;
   double standoff_mm = 10.0;                           // the path starts this far back from contact
+  double press_mm = 6.0;                               // and ends this far past it (stable contact, then the press)
   double tolerance_mm = kDefaultReachToleranceMm;      // as apex_gap_mm's
   double max_tilt_deg = 90.0;                          // from straight down; 90: horizontal approaches at most
   std::optional<Eigen::AlignedBox2d> workspace_xy_mm;  // the target's (x, y) in the object's frame

@@ -70,16 +70,4 @@ std::vector<Eigen::Vector3d> start_directions(int count, double tilt_deg) {
   return out;
 }
 
-Eigen::Isometry3d approach_frame(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& direction) {
-  const Eigen::Vector3d z = -direction.normalized();
-  const Eigen::Vector3d helper = std::abs(z.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
-  const Eigen::Vector3d x = helper.cross(z).normalized();
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear().col(0) = x;
-  t.linear().col(1) = z.cross(x);
-  t.linear().col(2) = z;
-  t.translation() = point_mm;
-  return t;
-}
-
 }  // namespace touchcloud::planning

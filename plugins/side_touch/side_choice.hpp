@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <Eigen/Geometry>
+#include <Eigen/Core>
 
 #include "touchcloud/types/implicit_model.hpp"
 
@@ -40,10 +40,5 @@ std::vector<SideCandidate> side_candidates(const ImplicitModel& model, const std
 // A start before any model: straight down first, then `count` - 1 directions
 // `tilt_deg` from it, evenly round the vertical (unit approach directions).
 std::vector<Eigen::Vector3d> start_directions(int count, double tilt_deg);
-
-// The approach frame of a press along `direction` whose line passes through
-// `point_mm`: origin there, z against the direction (TouchTarget's
-// base_from_approach, with the target at (0, 0)).
-Eigen::Isometry3d approach_frame(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& direction);
 
 }  // namespace touchcloud::planning

@@ -130,7 +130,7 @@ class SideTouch final : public Stage {
       const Eigen::Vector2d aims[] = {{0, 0}, {1, 0}, {0, 1}, {-1, 0}, {0, -1}};
       for (; next_start_ < directions.size(); ++next_start_)
         for (const Eigen::Vector2d& aim : aims) {
-          Eigen::Isometry3d frame = planning::approach_frame(centre_mm_, directions[next_start_]);
+          Eigen::Isometry3d frame = simulation::approach_frame(centre_mm_, directions[next_start_]);
           frame.translation() += frame.linear().leftCols<2>() * (aim_step_mm_ * aim);
           if (!reachable(frame, std::nullopt)) continue;
           ++next_start_;
@@ -144,7 +144,7 @@ class SideTouch final : public Stage {
     for (const auto& p : (*points)->points) surface.emplace_back(p.x, p.y, p.z);
     const auto candidates = planning::side_candidates(**implicit, surface, choice_, ctx.rng()());
     for (const planning::SideCandidate& c : candidates) {
-      const Eigen::Isometry3d frame = planning::approach_frame(c.point_mm, -c.outward);
+      const Eigen::Isometry3d frame = simulation::approach_frame(c.point_mm, -c.outward);
       if (!reachable(frame, 0.0)) continue;
       ctx.metric("chosen_variance", c.variance_mm2, "mm^2");
       ctx.metric("footprint_variance", c.footprint_variance_mm2, "mm^2");
@@ -153,7 +153,7 @@ class SideTouch final : public Stage {
     }
     // Nothing reachable: one more touch straight down at the centre, and the loop ends.
     ctx.note("stopped", "after " + std::to_string(calls_) + " touches no candidate could be reached");
-    emit(planning::approach_frame(centre_mm_, {0, 0, -1}), centre_mm_, io, ctx, true);
+    emit(simulation::approach_frame(centre_mm_, {0, 0, -1}), centre_mm_, io, ctx, true);
   }
 
   void on_finish(RunContext& ctx) override {

@@ -1,6 +1,6 @@
 // Closed shapes for touches from any side: a sphere and a torus as fine
 // OBJ meshes (their facets lie within 0.01 mm of the analytic surfaces),
-// scenes that place them, approach frames and a press along one.
+// scenes that place them, and a touch pressed to its end.
 #pragma once
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "sim_fixture.hpp"
+#include "touchcloud/simulation/objects/approach_view.hpp"
 
 namespace touchcloud::test {
 
@@ -70,20 +71,6 @@ inline simulation::Scene closed_scene(const TempDir& dir, const std::string& obj
     << "effects: [contact]\n" << extra;
   write_file(dir / "scene.yaml", s.str());
   return simulation::load_scene(dir / "scene.yaml");
-}
-
-// The approach frame of a press along `direction` (need not be unit) whose
-// line passes through `point`: origin at `point`, z against the direction.
-inline Eigen::Isometry3d approach_through(const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
-  const Eigen::Vector3d z = -direction.normalized();
-  const Eigen::Vector3d helper = std::abs(z.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
-  const Eigen::Vector3d x = helper.cross(z).normalized();
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear().col(0) = x;
-  t.linear().col(1) = z.cross(x);
-  t.linear().col(2) = z;
-  t.translation() = point;
-  return t;
 }
 
 // One touch at `target` as marker_gelstereo_simulator runs it with

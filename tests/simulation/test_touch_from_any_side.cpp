@@ -40,7 +40,7 @@ std::vector<Eigen::Vector3d> contacts(const simulation::GelStereoSimulation& sim
 // A touch along `direction` through `point`; its contact markers.
 std::vector<Eigen::Vector3d> touch_along(simulation::GelStereoSimulation& sim, const Eigen::Vector3d& point,
                                          const Eigen::Vector3d& direction) {
-  press_touch(sim, simulation::PressTarget({0, 0}, approach_through(point, direction)));
+  press_touch(sim, simulation::PressTarget({0, 0}, simulation::approach_frame(point, direction)));
   return contacts(sim);
 }
 
@@ -156,7 +156,7 @@ TEST(TouchFromAnySide, ASideTouchOfAnAnalyticObjectIsRefused) {
   TempDir dir;
   simulation::GelStereoSimulation sim(plane_scene(dir, "[contact]"), 1);
   const std::string what = input_error(
-      [&] { sim.step(simulation::PressTarget({0, 0}, approach_through({0, 0, 10}, {-1, 0, -1})), false); });
+      [&] { sim.step(simulation::PressTarget({0, 0}, simulation::approach_frame({0, 0, 10}, {-1, 0, -1})), false); });
   EXPECT_NE(what.find("needs a mesh object"), std::string::npos) << what;
 }
 
@@ -202,7 +202,7 @@ TEST(TouchFromAnySide, SphereRadiusFromAnImplicitSurfaceOfSideTouches) {
 TEST(TouchFromAnySide, AnApproachFrameThatIsNotRigidIsRefused) {
   TempDir dir;
   simulation::GelStereoSimulation sim(closed_scene(dir, sphere_obj(kSphereRadius), kSphereCentre), 1);
-  Eigen::Isometry3d stretched = approach_through(kSphereCentre, {-1, 0, 0});
+  Eigen::Isometry3d stretched = simulation::approach_frame(kSphereCentre, {-1, 0, 0});
   stretched.linear() *= 1.1;
   const std::string what = input_error([&] { sim.step(simulation::PressTarget({0, 0}, stretched), false); });
   EXPECT_NE(what.find("not a rigid transform"), std::string::npos) << what;
@@ -212,7 +212,7 @@ TEST(TouchFromAnySide, ATouchThatMissesTheObjectAndTheTableFails) {
   TempDir dir;
   simulation::GelStereoSimulation sim(closed_scene(dir, sphere_obj(kSphereRadius), kSphereCentre), 1);
   // Horizontal, 100 mm above the sphere: nothing on its line.
-  const simulation::PressTarget past({0, 0}, approach_through(kSphereCentre + Eigen::Vector3d(0, 0, 100), {-1, 0, 0}));
+  const simulation::PressTarget past({0, 0}, simulation::approach_frame(kSphereCentre + Eigen::Vector3d(0, 0, 100), {-1, 0, 0}));
   try {
     press_touch(sim, past);
     ADD_FAILURE() << "no RunError";

@@ -1,6 +1,7 @@
 #include "touchcloud/simulation/objects/approach_view.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace touchcloud::simulation {
@@ -52,6 +53,19 @@ double ApproachView::overlap_mm(const Eigen::Vector2d& xy, double z) const {
   double overlap = object_->overlap_mm(xy, z + lift_mm_);
   if (const auto table = table_height_mm(xy)) overlap = std::max(overlap, *table - z);
   return overlap;
+}
+
+Eigen::Isometry3d approach_frame(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d z = -direction.normalized();
+  // Any x across the press; the base's z makes a poor helper near the vertical.
+  const Eigen::Vector3d helper = std::abs(z.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d x = helper.cross(z).normalized();
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear().col(0) = x;
+  t.linear().col(1) = z.cross(x);
+  t.linear().col(2) = z;
+  t.translation() = point_mm;
+  return t;
 }
 
 }  // namespace touchcloud::simulation

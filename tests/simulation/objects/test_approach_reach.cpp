@@ -23,13 +23,13 @@ TEST(ApproachView, SeesTheObjectAlongThePressAndTheTableWhereItFacesIt) {
   TempDir dir;
   const auto mesh = placed_torus(dir);
   // From +x through the tube's centre: the outer wall 15 mm from it.
-  const Eigen::Isometry3d from_x = approach_through(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {-1, 0, 0});
+  const Eigen::Isometry3d from_x = simulation::approach_frame(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {-1, 0, 0});
   const simulation::ApproachView side(mesh, from_x.inverse());
   EXPECT_NEAR(side.height_mm({0, 0}), kTubeR, 0.01);
   EXPECT_FALSE(side.table_height_mm({0, 0}));  // edge-on: not faced
   EXPECT_LT(side.height_mm({0, 200}), -kRingR);  // beside the torus: the floor behind it
   // 45 degrees down beside the torus: the table.
-  const Eigen::Isometry3d down45 = approach_through({100, 0, 0}, {-1, 0, -1});
+  const Eigen::Isometry3d down45 = simulation::approach_frame({100, 0, 0}, {-1, 0, -1});
   const simulation::ApproachView oblique(mesh, down45.inverse());
   ASSERT_TRUE(oblique.table_height_mm({0, 0}));
   EXPECT_NEAR(*oblique.table_height_mm({0, 0}), 0.0, 1e-9);  // the frame's origin lies on the table
@@ -41,7 +41,7 @@ TEST(ApproachReach, FromBelowTheTableIsRefusedForTheTable) {
   TempDir dir;
   const auto mesh = placed_torus(dir);
   simulation::ApproachLimits limits;
-  const Eigen::Isometry3d up = approach_through(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {0, 0, 1});
+  const Eigen::Isometry3d up = simulation::approach_frame(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {0, 0, 1});
   const simulation::ApproachView view(mesh, up.inverse());
   const auto refused = simulation::refuse_approach(view, up, {0, 0}, std::nullopt, limits);
   ASSERT_TRUE(refused);
@@ -56,7 +56,7 @@ TEST(ApproachReach, IntoTheHoleThroughTheRingIsRefusedForTheObject) {
   // Horizontally from +x through the axis, meant for the hole's far wall
   // (x = -20: z = -20 in the press frame); the ring's outer wall at x = +50
   // stops the gel 70 mm before it.
-  const Eigen::Isometry3d from_x = approach_through(centre, {-1, 0, 0});
+  const Eigen::Isometry3d from_x = simulation::approach_frame(centre, {-1, 0, 0});
   const simulation::ApproachView view(mesh, from_x.inverse());
   const simulation::ApproachLimits limits;
   const auto refused = simulation::refuse_approach(view, from_x, {0, 0}, -(kRingR - kTubeR), limits);
@@ -70,7 +70,7 @@ TEST(ApproachReach, ATiltBeyondTheRobotsIsRefusedForTheWorkspace) {
   TempDir dir;
   const auto mesh = placed_torus(dir);
   // 45 degrees down through the tube's centre: onto its upper outer side.
-  const Eigen::Isometry3d oblique = approach_through(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {-1, 0, -1});
+  const Eigen::Isometry3d oblique = simulation::approach_frame(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {-1, 0, -1});
   const simulation::ApproachView view(mesh, oblique.inverse());
   EXPECT_FALSE(simulation::refuse_approach(view, oblique, {0, 0}, std::nullopt, simulation::ApproachLimits{}));
   simulation::ApproachLimits upright;
@@ -85,7 +85,7 @@ TEST(ApproachReach, ATiltBeyondTheRobotsIsRefusedForTheWorkspace) {
 TEST(ApproachReach, APressIntoTheTableIsRefusedForTheTable) {
   TempDir dir;
   const auto mesh = placed_torus(dir);
-  const Eigen::Isometry3d beside = approach_through({100, 0, 0}, {0, 0, -1});
+  const Eigen::Isometry3d beside = simulation::approach_frame({100, 0, 0}, {0, 0, -1});
   const simulation::ApproachView view(mesh, beside.inverse());
   simulation::ApproachLimits limits;
   const auto refused = simulation::refuse_approach(view, beside, {0, 0}, std::nullopt, limits);

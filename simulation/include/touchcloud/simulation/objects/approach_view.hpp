@@ -41,4 +41,9 @@ class ApproachView final : public ObjectSurface {
   double table_offset_mm_ = 0;
 };
 
+// The approach frame of a press along `direction` (need not be unit) whose
+// line passes through `point_mm`: origin there, z against the direction (a
+// touch target's base_from_approach, with the target at (0, 0)).
+Eigen::Isometry3d approach_frame(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& direction);
+
 }  // namespace touchcloud::simulation

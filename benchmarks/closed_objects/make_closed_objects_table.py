@@ -94,10 +94,10 @@ def plot(args, curves):
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     for (shape, method), by_touch in curves.items():
         touches = sorted(by_touch)
-        style = "-" if method.startswith("implicit") else "--"
+        style = "-" if method.startswith("implicit") else "--"  # a colour per shape, a line style per method
         for ax, name in zip(axes, ("chamfer_est_to_gt", "fscore")):
             ax.plot(touches, [statistics.fmean(by_touch[t][name]) for t in touches], style,
-                    label=f"{shape}, {method.split(' (')[0]}")
+                    color=f"C{SHAPES.index(shape)}", label=f"{shape}, {method.split(' (')[0]}")
     axes[0].set_ylabel("Eq. 11, estimate -> object (mm)")
     axes[0].set_yscale("log")
     axes[1].set_ylabel(f"F-score at {args.fscore_mm:g} mm")

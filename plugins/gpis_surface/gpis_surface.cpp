@@ -12,12 +12,14 @@
 // by inducing points (touchcloud/gp/sparse_implicit_surface.hpp) for tens of
 // thousands of points.
 //
-// The palm's normal comes from the tactile cloud's sensor pose (its z axis:
-// the palm presses along -z); without the tactile input each touch's normal
+// The palm's normal comes from the tactile cloud's sensor pose (against its
+// z axis: the gel presses along +z of the sensor frame); without the tactile input each touch's normal
 // is its patch's plane normal, turned away from the centroid of all points.
 //
 // The `surface` output is the model as a press from above meets it
-// (top_surface.hpp), for next_touch to choose where it is least certain.
+// (top_surface.hpp), for next_touch to choose where it is least certain; the
+// `implicit` output is the model itself, for side_touch's touches from any
+// side.
 #include <memory>
 #include <optional>
 #include <variant>
@@ -30,12 +32,26 @@
 #include "touchcloud/io/mesh_file.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/types/implicit_model.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"
 
 namespace touchcloud {
 
 enum class ImplicitForm { exact, sparse };
+
+// The model as the planner reads it; the stage copies the model before the
+// next touch while this is held.
+template <class Model>
+class HeldImplicitModel final : public ImplicitModel {
+ public:
+  explicit HeldImplicitModel(std::shared_ptr<const Model> model) : model_(std::move(model)) {}
+  Eigen::VectorXd mean(const Eigen::MatrixX3d& points_mm) const override { return model_->mean(points_mm); }
+  Eigen::VectorXd variance(const Eigen::MatrixX3d& points_mm) const override { return model_->variance(points_mm); }
+
+ private:
+  std::shared_ptr<const Model> model_;
+};
 
 class GpisSurface final : public Stage {
   gp::ImplicitSurfaceOptions options_;
@@ -52,6 +68,7 @@ class GpisSurface final : public Stage {
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
   SurfaceModelPtr surface_;
+  ImplicitModelPtr implicit_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("form", form_, ImplicitForm::exact, {{"exact", ImplicitForm::exact}, {"sparse", ImplicitForm::sparse}})
@@ -112,6 +129,8 @@ class GpisSurface final : public Stage {
     ports.output<CloudConstPtr>("cloud", "points sampled on the zero level set, base frame, mm");
     ports.output<SurfaceModelPtr>("surface", "the implicit surface as a press from above meets it: its highest "
                                              "zero crossing over each (x, y) and the variance there, for next_touch");
+    ports.output<ImplicitModelPtr>("implicit", "the implicit surface itself (signed distance and variance), for "
+                                               "side_touch");
     ports.metric("training_points", "points", "contact and signed points the GP is fitted to");
     ports.metric("update_path", "", "how the model was updated: 1 bordered Cholesky update, 2 refactorised, "
                  "3 hyperparameters selected");
@@ -131,6 +150,7 @@ class GpisSurface final : public Stage {
     // A model handed out as `surface` does not change: the next touch goes to
     // a copy while another stage still holds it.
     surface_.reset();
+    implicit_.reset();
     if (model.use_count() > 1) model = std::make_shared<Model>(*model);
     const gp::ImplicitUpdate update = model->add(touch);  // InputError names a touch it refuses
     static constexpr double kPath[] = {3, 1, 2};  // selected, bordered, refactorised
@@ -151,6 +171,7 @@ class GpisSurface final : public Stage {
       const double top_z_mm = model->contact_points().col(2).maxCoeff() + margin_mm_;
       surface_ = std::make_shared<ImplicitTopSurface<Model>>(model, top_z_mm, 1.0);
     }
+    if (io.wants("implicit")) implicit_ = std::make_shared<HeldImplicitModel<Model>>(model);
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -160,6 +181,7 @@ class GpisSurface final : public Stage {
       if (!cloud_) throw RunError("no touched points yet: the implicit surface needs a touch with points");
       io.output("cloud", cloud_);
       if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
+      if (implicit_) io.output<ImplicitModelPtr>("implicit", implicit_);
       return;
     }
     gp::ImplicitTouch touch;
@@ -167,7 +189,8 @@ class GpisSurface final : public Stage {
     for (std::size_t i = 0; i < cloud->size(); ++i)
       touch.points_mm.row(static_cast<Eigen::Index>(i)) << (*cloud)[i].x, (*cloud)[i].y, (*cloud)[i].z;
     if (const auto* tactile = io.optional_input<TactileCloudPtr>("tactile"); tactile && *tactile) {
-      const Eigen::Vector3d palm_normal = (*tactile)->pose.base_from_sensor.linear().col(2).normalized();
+      // The sensor's z points from the plate through the gel into the object.
+      const Eigen::Vector3d palm_normal = -(*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
     std::visit([&](auto& model) { update_and_mesh(model, touch, io, ctx); }, model_);
@@ -177,6 +200,7 @@ class GpisSurface final : public Stage {
     cloud_ = out;
     io.output("cloud", cloud_);
     if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
+    if (implicit_) io.output<ImplicitModelPtr>("implicit", implicit_);
   }
 
   void on_finish(RunContext& ctx) override {

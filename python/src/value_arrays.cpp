@@ -149,7 +149,9 @@ py::object to_python(const std::string& key, const std::any& value) {
                     py::arg("consecutive_frames") = v->consecutive_frames, py::arg("stable") = v->stable);
   if (const auto* v = std::any_cast<TouchTarget>(&value))
     return py::dict(py::arg("xy_mm") = py::make_tuple(v->xy_mm.x(), v->xy_mm.y()), py::arg("grid_index") = v->grid_index,
-                    py::arg("exploratory") = v->exploratory);
+                    py::arg("exploratory") = v->exploratory,
+                    py::arg("base_from_approach") =  // 4 x 4, or None: straight down
+                    v->base_from_approach ? py::cast(Eigen::Matrix4d(v->base_from_approach->matrix())) : py::none());
   if (const auto* v = std::any_cast<DisplacementFieldPtr>(&value)) {
     // N x 4: x_px, y_px at rest, dx_px, dy_px; the mm through mm_per_px.
     const DisplacementField& f = **v;

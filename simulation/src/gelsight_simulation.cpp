@@ -65,8 +65,8 @@ std::vector<cv::Point2d> GelSightSimulation::markers_now_px() const { return req
 
 double GelSightSimulation::marker_diameter_px() const { return require_markers().diameter_px(); }
 
-bool GelSightSimulation::press(const Eigen::Isometry3d& base_from_sensor) {
-  press_pad(sensor(), base_from_sensor, object(), contact(), pad_);
+bool GelSightSimulation::press(const Eigen::Isometry3d& press_from_sensor) {
+  press_pad(sensor(), press_from_sensor, pressed_object(), contact(), pad_);
   return pad_.overlapping_px > 0;
 }
 
@@ -123,7 +123,7 @@ HeightMap GelSightSimulation::height_truth(double contact_threshold_mm) const {
   map.gel_thickness_mm = sensor().gel_thickness_mm;
   map.timestamp_s = f.timestamp_s;
   map.index = f.index;
-  map.pose.base_from_sensor = f.touch.base_from_sensor;  // the truth's true pose
+  map.pose.base_from_sensor = f.object_from_sensor;  // the truth's true pose
   return map;
 }
 

@@ -85,8 +85,10 @@ GelStereoSimulation::GelStereoSimulation(Scene scene, std::uint64_t noise_seed,
   }
 }
 
-bool GelStereoSimulation::press(const Eigen::Isometry3d& base_from_sensor) {
-  press_gel(layout_->rest_mm, base_from_sensor, object(), contact(), gel_);
+bool GelStereoSimulation::press(const Eigen::Isometry3d& press_from_sensor) {
+  press_gel(layout_->rest_mm, press_from_sensor, pressed_object(), contact(), gel_);
+  if (const auto& to_object = object_from_press())
+    for (auto& p : gel_.markers_base_mm) p = *to_object * p;
   return gel_.markers_overlapping > 0;
 }
 
@@ -223,7 +225,7 @@ const std::array<ViewHits, 2>& GelStereoSimulation::colour_hits() {
   if (!colour_hits_) {
     if (!surface_)
       surface_ = std::make_unique<GelSurface>(scene().sensor.gel.radius_mm(), scene().sensor.colour_pattern.surface_grid_mm);
-    surface_->press(frame().touch.base_from_sensor, object(), contact());
+    surface_->press(frame().touch.press_from_sensor, pressed_object(), contact());
     const ColourPairRenderer& r = colour_renderer();
     colour_hits_ = std::array<ViewHits, 2>{r.cast(StereoSide::Left, *surface_), r.cast(StereoSide::Right, *surface_)};
   }
@@ -281,7 +283,7 @@ DenseMaps GelStereoSimulation::dense_truth() {
   colour_renderer().truth(hits[0], hits[1], *surface_, maps);
   maps.timestamp_s = frame().timestamp_s;
   maps.index = frame().index;
-  maps.pose.base_from_sensor = frame().touch.base_from_sensor;  // the truth's true pose
+  maps.pose.base_from_sensor = frame().object_from_sensor;  // the truth's true pose
   return maps;
 }
 

@@ -56,7 +56,7 @@ void SimulatorParameters::declare(ParameterSet& p) {
 }
 
 void SimulatorParameters::declare_ports(PortSet& ports) {
-  ports.optional_input<TouchTarget>("target", "where to touch (base frame); else target_xy_mm");
+  ports.optional_input<TouchTarget>("target", "where to touch (base frame, or the approach frame it carries: a touch from any side); else target_xy_mm");
   ports.optional_input<ContactState>("contact", "the previous frame's contact (wire stable_contact.state@previous)");
   ports.output<SensorPose>("pose", "the sensor pose the robot reports");
   ports.output<bool>("touch_done", "true on the recorded frame (stable contact, then the further press)");
@@ -102,7 +102,7 @@ void SimulatorParameters::configure(RunContext& ctx) const {
 PressTarget SimulatorParameters::target(const StageIO& io) const {
   if (const auto* t = io.optional_input<TouchTarget>("target")) {
     if (target_xy_mm_) throw ParameterError("target_xy_mm", "is set, but input 'target' is wired too: use one");
-    return {t->xy_mm};
+    return {t->xy_mm, t->base_from_approach};
   }
   if (!target_xy_mm_)
     throw InputError("no touch target: wire input 'target' (a touch_target) or set target_xy_mm: [x, y]");

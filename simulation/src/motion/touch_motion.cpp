@@ -14,8 +14,14 @@ Eigen::Isometry3d PressTarget::sensor_pose(double height_mm) const {
   return pose;
 }
 
+bool PressTarget::operator==(const PressTarget& other) const {
+  if (xy_mm != other.xy_mm || base_from_approach.has_value() != other.base_from_approach.has_value()) return false;
+  return !base_from_approach || base_from_approach->matrix() == other.base_from_approach->matrix();
+}
+
 TouchStep TouchMotion::next(const PressTarget& target, double start_height_mm, bool previous_stable) {
-  if (!target.xy_mm.allFinite()) throw RunError("the touch target is not finite");
+  if (!target.xy_mm.allFinite() || (target.base_from_approach && !target.base_from_approach->matrix().allFinite()))
+    throw RunError("the touch target is not finite");
   if (!touching_) {
     touching_ = true;
     ++touch_;
@@ -47,7 +53,8 @@ TouchStep TouchMotion::next(const PressTarget& target, double start_height_mm, b
   step.frame_in_touch = frame_;
   step.pressed = pressed_;
   step.target = target_;
-  step.base_from_sensor = target_.sensor_pose(height_);
+  step.press_from_sensor = target_.sensor_pose(height_);
+  step.base_from_sensor = step.press_from_sensor;
   return step;
 }
 

@@ -28,4 +28,41 @@ std::vector<double> apex_gaps_mm(const ObjectSurface& object, const WorkspaceGri
   return gaps;
 }
 
+const char* to_string(ReachRefusal reason) {
+  switch (reason) {
+    case ReachRefusal::Workspace: return "workspace";
+    case ReachRefusal::Table: return "table";
+    case ReachRefusal::Object: return "object";
+    case ReachRefusal::Nothing: return "nothing";
+  }
+  return "?";
+}
+
+std::optional<ReachRefusal> refuse_approach(const ApproachView& view, const Eigen::Isometry3d& object_from_press,
+                                            const Eigen::Vector2d& xy_mm, std::optional<double> intended_mm,
+                                            const ApproachLimits& limits) {
+  // The approach direction in the object's frame: the press frame's -z.
+  const Eigen::Vector3d d = -object_from_press.linear().col(2);
+  const double surface = view.height_mm(xy_mm);
+  if (!(surface > view.floor_mm())) return ReachRefusal::Nothing;
+  // Where the gel's apex stops: the first point of the object or the table
+  // its dome meets.
+  const double r = limits.gel_radius_mm;
+  const double stop = surface + apex_gap_mm(view, xy_mm, r);
+  const Eigen::Vector3d contact = object_from_press * Eigen::Vector3d(xy_mm.x(), xy_mm.y(), stop);
+  if (limits.workspace_xy_mm && !limits.workspace_xy_mm->contains(contact.head<2>())) return ReachRefusal::Workspace;
+  // The hemisphere's lowest point: its sphere's bottom when the dome faces
+  // down or sideways, else its rim.
+  const double below_centre = d.z() <= 0 ? r : r * std::sqrt(std::max(0.0, 1.0 - d.z() * d.z()));
+  const double centre_z = contact.z() - r * d.z();  // the sphere's centre at contact
+  const double lowest =
+      std::min(centre_z - limits.standoff_mm * d.z(), centre_z + limits.press_mm * d.z()) - below_centre;
+  constexpr double kTableSlackMm = 1e-6;
+  if (lowest < -kTableSlackMm) return ReachRefusal::Table;
+  const double tilt_deg = std::acos(std::clamp(-d.z(), -1.0, 1.0)) * 180.0 / M_PI;
+  if (tilt_deg > limits.max_tilt_deg + 1e-9) return ReachRefusal::Workspace;
+  if (stop - intended_mm.value_or(surface) > limits.tolerance_mm) return ReachRefusal::Object;
+  return std::nullopt;
+}
+
 }  // namespace touchcloud::simulation

@@ -25,6 +25,34 @@ void read_robot(ConfigFields& f, RobotSpec& robot) {
   robot.max_contact_depth_mm = f.number("max_contact_depth_mm", robot.max_contact_depth_mm, FieldRule::Positive);
 }
 
+// `turntable: {centre_mm: [x, y], angles_deg: [a0, a1, ...]}` or `{centre_mm, step_deg}`.
+TurntableSpec read_turntable(ConfigFields& f, ConfigProblems& problems) {
+  TurntableSpec t;
+  const auto centre = f.numbers("centre_mm", {0, 0}, 2);
+  t.centre_mm = Eigen::Vector2d(centre[0], centre[1]);
+  const bool has_step = f.has("step_deg");
+  t.step_deg = f.number("step_deg", 0.0);
+  const YAML::Node angles = f.raw("angles_deg");
+  if (angles.IsDefined() && !angles.IsNull()) {
+    if (!angles.IsSequence() || angles.size() == 0) {
+      problems.add(angles, f.field("angles_deg") + ": must be a list of angles (degrees, one per touch)");
+    } else {
+      for (std::size_t i = 0; i < angles.size(); ++i) {
+        double v = 0;
+        if (!angles[i].IsScalar() || !YAML::convert<double>::decode(angles[i], v) || !std::isfinite(v)) {
+          problems.add(angles[i], f.field("angles_deg") + "[" + std::to_string(i) + "]: must be a number");
+          break;
+        }
+        t.angles_deg.push_back(v);
+      }
+    }
+    if (has_step) f.error("step_deg", "is set, and so is angles_deg: set one");
+  } else if (!has_step) {
+    f.error("step_deg", "is missing: a turntable needs angles_deg (one per touch) or step_deg");
+  }
+  return t;
+}
+
 // One effect's own fields (`params` may be absent or null).
 void read_effect(Effect effect, const YAML::Node& params, Scene& scene, ConfigProblems& problems) {
   ConfigFields f(params, std::string("effects.") + to_string(effect), problems);
@@ -107,6 +135,19 @@ void read_effects(const YAML::Node& node, Scene& scene, ConfigProblems& problems
 
 }  // namespace
 
+double TurntableSpec::angle_deg(int touch) const {
+  if (angles_deg.empty()) return touch * step_deg;
+  return angles_deg[static_cast<std::size_t>(touch) % angles_deg.size()];
+}
+
+Eigen::Isometry3d TurntableSpec::base_from_object(int touch) const {
+  const Eigen::Vector3d centre(centre_mm.x(), centre_mm.y(), 0.0);
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::AngleAxisd(angle_deg(touch) * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  t.translation() = centre - t.linear() * centre;
+  return t;
+}
+
 Scene load_scene(const fs::path& file) {
   const YAML::Node root = config::load_yaml_file(file, "scene file");
   ConfigProblems problems(file);
@@ -128,6 +169,13 @@ Scene load_scene(const fs::path& file) {
       else sensor::read_gelstereo_sensor(*fields, problems, scene.sensor);
     }
     if (auto robot = top.child("robot")) read_robot(*robot, scene.robot);
+    if (top.has("turntable"))
+      if (auto turntable = top.child("turntable")) {
+        scene.turntable = read_turntable(*turntable, problems);
+        if (scene.object.kind != ObjectKind::Mesh)
+          turntable->error("centre_mm", std::string("a turntable turns a mesh object; object is ") +
+                                            to_string(scene.object.kind));
+      }
     const YAML::Node effects = top.raw("effects");
     read_effects(effects, scene, problems);
     if (scene.family == sensor::SensorFamily::GelSight)

@@ -29,11 +29,12 @@ CloudConstPtr cloud_of(const gp::ImplicitTouch& t) {
   return c;
 }
 
-// The sensor's pose for a touch along -n: its z axis is n.
+// The sensor's pose for a touch along -n, as the simulator reports it: its
+// z axis points along the press, into the object (-n).
 TactileCloudPtr tactile_for(const gp::ImplicitTouch& t) {
   auto tactile = std::make_shared<TactileCloud>();
   const Eigen::Vector3d n = t.normals.row(0).transpose();
-  tactile->pose.base_from_sensor.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
+  tactile->pose.base_from_sensor.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), -n).toRotationMatrix();
   tactile->pose.base_from_sensor.translation() = t.points_mm.colwise().mean().transpose() + 10 * n;
   return tactile;
 }

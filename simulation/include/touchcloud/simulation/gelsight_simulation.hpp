@@ -54,7 +54,7 @@ class GelSightSimulation final : public TouchSimulation {
  private:
   double gel_footprint_radius_mm() const override { return sensor().pad_half_diagonal_mm(); }
   double gel_reach_mm() const override { return sensor().gel_thickness_mm; }
-  bool press(const Eigen::Isometry3d& base_from_sensor) override;
+  bool press(const Eigen::Isometry3d& press_from_sensor) override;
   MonoColourFrame stamped(cv::Mat image) const;
   // vignetting, then (a frame, not the reference) exposure_drift: on the 8-bit image, rounded again.
   void apply_lens_and_exposure(cv::Mat& image, bool frame) const;

@@ -77,7 +77,7 @@ class GelStereoSimulation final : public TouchSimulation {
  private:
   double gel_footprint_radius_mm() const override { return scene().sensor.gel.radius_mm(); }
   double gel_reach_mm() const override { return scene().sensor.gel.radius_mm(); }
-  bool press(const Eigen::Isometry3d& base_from_sensor) override;
+  bool press(const Eigen::Isometry3d& press_from_sensor) override;
   void forget_frame() override;
 
   std::vector<MarkerDot> dots(const ViewPixels& view, int side) const;

@@ -10,6 +10,12 @@
 //   GelSightSimulation   a flat pad under one camera (gelsight_simulation.hpp)
 //
 // Every random draw derives from `noise_seed` and the frame number alone.
+//
+// A touch from any side (a target with an approach frame) or on a turntable
+// runs the same vertical press in its press frame: the object seen along the
+// press (objects/approach_view.hpp), every family's gel pressed and rendered
+// as from above; the pose and the base-frame points are mapped back to the
+// object's frame (the base frame without a turntable).
 #pragma once
 
 #include <cstdint>
@@ -19,7 +25,9 @@
 
 #include "touchcloud/simulation/gel/gel_contact.hpp"
 #include "touchcloud/simulation/motion/touch_motion.hpp"
+#include "touchcloud/simulation/objects/approach_view.hpp"
 #include "touchcloud/simulation/objects/object_surface.hpp"
+#include "touchcloud/scoring/triangle_mesh.hpp"
 #include "touchcloud/simulation/scene/scene.hpp"
 
 namespace touchcloud::simulation {
@@ -29,7 +37,10 @@ struct TouchFrame {
   double timestamp_s = 0;
   TouchStep touch;
   double travel_past_contact_mm = 0;
-  Eigen::Isometry3d reported_base_from_sensor = Eigen::Isometry3d::Identity();  // pose_noise applied
+  // The pose the robot reports (pose_noise applied), in the object's frame on
+  // a turntable (the scene's base frame at angle 0), and the true one there.
+  Eigen::Isometry3d reported_base_from_sensor = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d object_from_sensor = Eigen::Isometry3d::Identity();
 };
 
 struct SimulationCounts {
@@ -49,9 +60,10 @@ class TouchSimulation {
   const ObjectSurface& object() const { return *object_; }
   const SimulationCounts& counts() const { return counts_; }
 
-  // The sensor origin's start height for a touch at `target`: the gel's
-  // outermost point (the dome's apex, the pad's face) safe_clearance_mm above
-  // the highest object point under the gel.
+  // The sensor origin's start height for a touch at `target` (of the
+  // touch under way, or from above): the gel's outermost point (the dome's
+  // apex, the pad's face) safe_clearance_mm above the highest object point
+  // under the gel, in the press frame.
   double safe_height_mm(const PressTarget& target) const;
   // This frame's outermost gel point above the object's surface at the touch
   // target: about minus the press depth when the gel reached the target, far
@@ -76,6 +88,12 @@ class TouchSimulation {
 
   std::uint64_t noise_seed() const { return noise_seed_; }
   const GelContactOptions& contact() const { return contact_; }
+  // What the gel is pressed onto: the object seen along the touch's press
+  // (a touch from any side, a turntable), else object().
+  const ObjectSurface& pressed_object() const { return view_ ? *view_ : *object_; }
+  // The press frame in the object's frame; not set when it is the base
+  // frame (a touch from above, no turntable).
+  const std::optional<Eigen::Isometry3d>& object_from_press() const { return object_from_press_; }
   void count_rendered_frame() { ++counts_.frames_rendered; }
   void count_projected_frame() { ++counts_.frames_projected; }
 
@@ -85,16 +103,24 @@ class TouchSimulation {
   // from the sensor origin along the press.
   virtual double gel_footprint_radius_mm() const = 0;
   virtual double gel_reach_mm() const = 0;
-  // Presses the gel onto the object with the sensor at `base_from_sensor`
-  // (the true pose); whether any of it overlaps the object.
-  virtual bool press(const Eigen::Isometry3d& base_from_sensor) = 0;
+  // Presses the gel onto pressed_object() with the sensor at
+  // `press_from_sensor` (the true pose in the press frame); whether any of it
+  // overlaps the object. Points kept in the base frame are mapped by
+  // object_from_press() when set.
+  virtual bool press(const Eigen::Isometry3d& press_from_sensor) = 0;
   // Forgets what was computed from the previous frame (pixels, hits).
   virtual void forget_frame() {}
 
   Scene scene_;
   std::uint64_t noise_seed_;
   std::uint64_t pose_noise_stream_;
+  // Sets the press frame and the view for a touch starting at `target`.
+  void start_press(const PressTarget& target);
+
   std::shared_ptr<const ObjectSurface> object_;
+  std::shared_ptr<const scoring::TriangleMesh> mesh_;  // the placed mesh, read at the first touch that needs it
+  std::unique_ptr<ApproachView> view_;
+  std::optional<Eigen::Isometry3d> object_from_press_, base_from_press_;
   GelContactOptions contact_;
   TouchMotion motion_;
   TouchFrame frame_;

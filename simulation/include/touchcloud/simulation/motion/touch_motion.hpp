@@ -16,22 +16,26 @@
 
 namespace touchcloud::simulation {
 
-// What a touch presses at: a point of the base frame, approached straight
-// down (along the base's -z) with the gel facing the table. Everything that
-// moves the sensor along a touch asks the target for the pose, so the
-// approach is defined here alone.
+// What a touch presses at: a point (x, y) of the approach frame, approached
+// along its -z with the gel facing that way. The approach frame is the base
+// frame (straight down, the gel facing the table) unless base_from_approach
+// places it: a touch from any side. Everything that moves the sensor along a
+// touch asks the target for the pose, so the approach is defined here alone.
 struct PressTarget {
   Eigen::Vector2d xy_mm = Eigen::Vector2d::Zero();
+  std::optional<Eigen::Isometry3d> base_from_approach;  // not set: the base frame
 
   PressTarget() = default;
   // A point of the base frame (mm) is a target: it is pressed straight down.
   PressTarget(const Eigen::Vector2d& point_xy_mm) : xy_mm(point_xy_mm) {}  // NOLINT(google-explicit-constructor)
   PressTarget(double x_mm, double y_mm) : xy_mm(x_mm, y_mm) {}
+  PressTarget(const Eigen::Vector2d& point_xy_mm, const std::optional<Eigen::Isometry3d>& approach)
+      : xy_mm(point_xy_mm), base_from_approach(approach) {}
 
-  // The sensor's pose with its origin `height_mm` above the table on the
-  // approach to the target.
+  // The sensor's pose in the approach frame with its origin `height_mm`
+  // above the approach frame's z = 0 (the table, from above).
   Eigen::Isometry3d sensor_pose(double height_mm) const;
-  bool operator==(const PressTarget& other) const { return xy_mm == other.xy_mm; }
+  bool operator==(const PressTarget& other) const;
 };
 
 struct TouchStep {
@@ -39,6 +43,11 @@ struct TouchStep {
   int frame_in_touch = 0;        // 0 at the safe height
   bool pressed = false;          // the recorded frame
   PressTarget target;
+  // The sensor's true pose in the frame the press runs in: the approach
+  // frame (the base frame from above), or the object's frame on a turntable.
+  Eigen::Isometry3d press_from_sensor = Eigen::Isometry3d::Identity();
+  // The true pose in the robot's base frame (the same as press_from_sensor
+  // for a touch from above without a turntable).
   Eigen::Isometry3d base_from_sensor = Eigen::Isometry3d::Identity();
 };
 
@@ -52,6 +61,7 @@ class TouchMotion {
         approach_step_mm_((robot.approach_speed_mm_s > 0 ? robot.approach_speed_mm_s : robot.speed_mm_s) / fps) {}
 
   bool touching() const { return touching_; }
+  int touches_started() const { return touch_ + 1; }
   // The next frame. A touch starts (at `start_height_mm`, the sensor origin's
   // height) when none is under way; during one, the target must stay the same
   // (RunError otherwise) and `previous_stable` says whether the pipeline found

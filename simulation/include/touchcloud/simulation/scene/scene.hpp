@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -43,6 +44,21 @@ struct RobotSpec {
   double max_contact_depth_mm = 10.0;  // past first contact without stability: error
 };
 
+// A turntable under the object (`turntable:`): between touches it turns the
+// object about the vertical axis through centre_mm. The object's own frame
+// is the scene's base frame at angle 0: the simulator reports poses and
+// points in it, so touches add up on the object and the scene's object stays
+// the ground truth.
+struct TurntableSpec {
+  Eigen::Vector2d centre_mm = Eigen::Vector2d::Zero();
+  std::vector<double> angles_deg;  // touch k at angles_deg[k], from the start again when touches outnumber them
+  double step_deg = 0;             // without angles_deg: touch k at k * step_deg
+
+  double angle_deg(int touch) const;
+  // Where the object stands in the base frame during touch `touch`.
+  Eigen::Isometry3d base_from_object(int touch) const;
+};
+
 struct Scene {
   std::filesystem::path file;
   std::string name;
@@ -54,6 +70,7 @@ struct Scene {
   sensor::GelStereoSensor sensor;  // the `sensor:` section (shared with the sensing stages)
   sensor::GelSightSensor gelsight; // the `sensor:` section of family gelsight
   RobotSpec robot;
+  std::optional<TurntableSpec> turntable;  // not set: the object stands still on the table
   EffectSet effects;
   EffectParameters effect_parameters;
 

@@ -1,0 +1,96 @@
+// The object seen along a press from any side (approach_view.hpp) and the
+// reach check of such a touch (reach_check.hpp: refuse_approach).
+#include <gtest/gtest.h>
+
+#include "closed_shape_fixture.hpp"
+#include "touchcloud/simulation/objects/reach_check.hpp"
+
+using namespace touchcloud;
+using namespace touchcloud::test;
+
+namespace {
+
+const Eigen::Vector3d kOnTable(0, 0, 15);  // on the table
+constexpr double kRingR = 35, kTubeR = 15;
+
+scoring::TriangleMesh placed_torus(const TempDir& dir) {
+  return read_placed_object_mesh(closed_scene(dir, torus_obj(kRingR, kTubeR), kOnTable).object);
+}
+
+}  // namespace
+
+TEST(ApproachView, SeesTheObjectAlongThePressAndTheTableWhereItFacesIt) {
+  TempDir dir;
+  const auto mesh = placed_torus(dir);
+  // From +x through the tube's centre: the outer wall 15 mm from it.
+  const Eigen::Isometry3d from_x = simulation::approach_frame(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {-1, 0, 0});
+  const simulation::ApproachView side(mesh, from_x.inverse());
+  EXPECT_NEAR(side.height_mm({0, 0}), kTubeR, 0.01);
+  EXPECT_FALSE(side.table_height_mm({0, 0}));  // edge-on: not faced
+  EXPECT_LT(side.height_mm({0, 200}), -kRingR);  // beside the torus: the floor behind it
+  // 45 degrees down beside the torus: the table.
+  const Eigen::Isometry3d down45 = simulation::approach_frame({100, 0, 0}, {-1, 0, -1});
+  const simulation::ApproachView oblique(mesh, down45.inverse());
+  ASSERT_TRUE(oblique.table_height_mm({0, 0}));
+  EXPECT_NEAR(*oblique.table_height_mm({0, 0}), 0.0, 1e-9);  // the frame's origin lies on the table
+  EXPECT_NEAR(oblique.height_mm({0, 0}), 0.0, 1e-9);
+  EXPECT_NEAR(oblique.overlap_mm({0, 0}, -1.0), 1.0, 1e-9);
+}
+
+TEST(ApproachReach, FromBelowTheTableIsRefusedForTheTable) {
+  TempDir dir;
+  const auto mesh = placed_torus(dir);
+  simulation::ApproachLimits limits;
+  const Eigen::Isometry3d up = simulation::approach_frame(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {0, 0, 1});
+  const simulation::ApproachView view(mesh, up.inverse());
+  const auto refused = simulation::refuse_approach(view, up, {0, 0}, std::nullopt, limits);
+  ASSERT_TRUE(refused);
+  EXPECT_STREQ(simulation::to_string(*refused), "table");
+}
+
+TEST(ApproachReach, IntoTheHoleThroughTheRingIsRefusedForTheObject) {
+  TempDir dir;
+  // On a stand 30 mm high, so that a horizontal palm clears the table.
+  const Eigen::Vector3d centre(0, 0, 45);
+  const auto mesh = read_placed_object_mesh(closed_scene(dir, torus_obj(kRingR, kTubeR), centre).object);
+  // Horizontally from +x through the axis, meant for the hole's far wall
+  // (x = -20: z = -20 in the press frame); the ring's outer wall at x = +50
+  // stops the gel 70 mm before it.
+  const Eigen::Isometry3d from_x = simulation::approach_frame(centre, {-1, 0, 0});
+  const simulation::ApproachView view(mesh, from_x.inverse());
+  const simulation::ApproachLimits limits;
+  const auto refused = simulation::refuse_approach(view, from_x, {0, 0}, -(kRingR - kTubeR), limits);
+  ASSERT_TRUE(refused);
+  EXPECT_STREQ(simulation::to_string(*refused), "object");
+  // Meant for the outer wall it meets first, the same approach is made.
+  EXPECT_FALSE(simulation::refuse_approach(view, from_x, {0, 0}, kRingR + kTubeR, limits));
+}
+
+TEST(ApproachReach, ATiltBeyondTheRobotsIsRefusedForTheWorkspace) {
+  TempDir dir;
+  const auto mesh = placed_torus(dir);
+  // 45 degrees down through the tube's centre: onto its upper outer side.
+  const Eigen::Isometry3d oblique = simulation::approach_frame(kOnTable + Eigen::Vector3d(kRingR, 0, 0), {-1, 0, -1});
+  const simulation::ApproachView view(mesh, oblique.inverse());
+  EXPECT_FALSE(simulation::refuse_approach(view, oblique, {0, 0}, std::nullopt, simulation::ApproachLimits{}));
+  simulation::ApproachLimits upright;
+  upright.max_tilt_deg = 30;
+  const auto refused = simulation::refuse_approach(view, oblique, {0, 0}, std::nullopt, upright);
+  ASSERT_TRUE(refused);
+  EXPECT_STREQ(simulation::to_string(*refused), "workspace");
+}
+
+// The press goes on past first contact: a press onto the table beside the
+// object would push the gel into it.
+TEST(ApproachReach, APressIntoTheTableIsRefusedForTheTable) {
+  TempDir dir;
+  const auto mesh = placed_torus(dir);
+  const Eigen::Isometry3d beside = simulation::approach_frame({100, 0, 0}, {0, 0, -1});
+  const simulation::ApproachView view(mesh, beside.inverse());
+  simulation::ApproachLimits limits;
+  const auto refused = simulation::refuse_approach(view, beside, {0, 0}, std::nullopt, limits);
+  ASSERT_TRUE(refused);
+  EXPECT_STREQ(simulation::to_string(*refused), "table");
+  limits.press_mm = 0;  // only touching it
+  EXPECT_FALSE(simulation::refuse_approach(view, beside, {0, 0}, std::nullopt, limits));
+}

@@ -59,6 +59,24 @@ def run_each(commands, ranks, parent):
     return failed
 
 
+def run_all(commands, ranks, parent, noun="runs"):
+    """Runs every command: one after the other (counting them on stderr), or
+    spread over one `mpirun -n RANKS` job (run_each) when ranks > 1; the
+    results do not depend on which. RuntimeError naming the first failure."""
+    if ranks > 1:
+        failed = run_each(commands, ranks, parent)
+        if failed:
+            cmd, status, stderr = failed[0]
+            raise RuntimeError(f"{len(failed)} {noun} failed; {' '.join(cmd)} ({status}):\n{stderr}")
+        return
+    for i, cmd in enumerate(commands, 1):
+        done = subprocess.run(cmd, capture_output=True, text=True)
+        if done.returncode != 0:
+            raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
+        print(f"\r{i}/{len(commands)} {noun}", end="", file=sys.stderr, flush=True)
+    print(file=sys.stderr)
+
+
 def _run_claimed(folder):
     rank, _ = launched_ranks()
     with open(os.path.join(folder, "commands.json")) as f:

@@ -29,12 +29,11 @@ import csv
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from mpi_launch import run_each  # noqa: E402
+from mpi_launch import run_all  # noqa: E402
 
 PAPER_ACCURACY_MM = 0.3        # the paper's "reconstruction accuracy of 0.3 mm"
 TOLERANCE_MM = 0.1             # on the mean over both objects
@@ -103,23 +102,6 @@ def press_row(obj, sensor, seed, target, out):
             "points": int(m["salient.salient_points"]["value"])}
 
 
-def run_presses(commands, ranks, workdir):
-    """Runs every press: one after the other, or spread over one `mpirun -n
-    RANKS` job (scripts/mpi_launch.py); the rows do not depend on which."""
-    if ranks > 1:
-        failed = run_each(commands, ranks, workdir)
-        if failed:
-            cmd, status, stderr = failed[0]
-            raise RuntimeError(f"{len(failed)} presses failed; {' '.join(cmd)} ({status}):\n{stderr}")
-        return
-    for i, cmd in enumerate(commands, 1):
-        done = subprocess.run(cmd, capture_output=True, text=True)
-        if done.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
-        print(f"\r{i}/{len(commands)} presses", end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--touchcloud", default="build/bin/touchcloud")
@@ -139,7 +121,7 @@ def main():
         features = [(obj, seed) for obj in FEATURE_OBJECTS for seed in range(1, len(FEATURE_OBJECTS[obj][1]) + 1)]
         feature_runs = [feature_press(args, *p, workdir) for p in features]
         try:
-            run_presses([cmd for cmd, _ in runs + feature_runs], args.ranks, workdir)
+            run_all([cmd for cmd, _ in runs + feature_runs], args.ranks, workdir, "presses")
         except RuntimeError as e:
             sys.exit(f"make_sensor_accuracy: {e}")
         rows = [press_row(*p, out) for p, (_, out) in zip(presses, runs)]

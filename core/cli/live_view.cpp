@@ -61,6 +61,7 @@ LiveView::LiveView(int port) : server_(std::make_unique<Server>()) {
   };
   s.http.Get("/", text(report_assets::live_html(), "text/html; charset=utf-8"));
   s.http.Get("/live.js", text(report_assets::live_js(), "text/javascript"));
+  s.http.Get("/error_capture.js", text(report_assets::error_capture_js(), "text/javascript"));
   s.http.Get("/three.min.js", text(report_assets::three_js(), "text/javascript"));
   s.http.Get("/OrbitControls.js", text(report_assets::orbit_controls_js(), "text/javascript"));
   s.http.Get("/state.json", [&s](const httplib::Request&, httplib::Response& res) {

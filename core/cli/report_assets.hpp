@@ -16,5 +16,6 @@ std::string_view page_js();           // report/page.js
 std::string_view page_css();          // report/page.css
 std::string_view live_html();         // report/live.html (touchcloud stream --view)
 std::string_view live_js();           // report/live.js
+std::string_view error_capture_js();  // report/error_capture.js (both pages' first script)
 
 }  // namespace touchcloud::cli::report_assets

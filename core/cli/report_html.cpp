@@ -60,6 +60,7 @@ std::string report_html(const nlohmann::json& data) {
                           inline_text(report_assets::orbit_controls_js()) + "\n</script>\n<script>\n" +
                           inline_text(report_assets::uplot_js()));
   put(page, "@STYLE@", inline_text(report_assets::uplot_css()) + "\n" + inline_text(report_assets::page_css()));
+  put(page, "@ERROR_CAPTURE@", inline_text(report_assets::error_capture_js()));
   put(page, "@TITLE@", html_escape(title));
   return page;
 }

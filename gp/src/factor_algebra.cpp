@@ -109,6 +109,18 @@ void solve_right_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixX
   eigen_solve_right_transposed(l, b);
 }
 
+void multiply_lower_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b) {
+  if (b.rows() == 0 || b.cols() == 0) return;
+#ifdef TOUCHCLOUD_GP_OPENBLAS
+  if (l.rows() >= kOpenBlasFromRows) {
+    cblas_dtrmm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, as_int(b.rows()), as_int(b.cols()),
+                1.0, l.data(), as_int(l.outerStride()), b.data(), as_int(b.outerStride()));
+    return;
+  }
+#endif
+  b = l.triangularView<Eigen::Lower>() * b;
+}
+
 bool left_side_solve_preferred(Eigen::Index factor_rows) {
 #ifdef TOUCHCLOUD_GP_OPENBLAS
   static const bool avx512_kernels = [] {

@@ -7,6 +7,8 @@
 #include <Eigen/Cholesky>
 
 #include "implicit_selection.hpp"
+#include "touchcloud/gp/cholesky_inverse.hpp"
+#include "touchcloud/gp/factor_algebra.hpp"
 #include "latent_variance.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/parallel_ranges.hpp"
@@ -15,16 +17,23 @@ namespace touchcloud::gp {
 
 namespace {
 
-constexpr Eigen::Index kInducingQueryBlock = 256;  // variance: L_uu^-1 K(U, block) holds m x this many doubles
+constexpr Eigen::Index kInducingQueryBlock = 512;  // variance: K(U, block) and its product hold m x this many doubles each
+// New inducing rows: A's columns this many at a time (m x 256 doubles, about
+// 1.3 MB at m = 620, stay in cache between the block's two products).
+constexpr Eigen::Index kColumnBlock = 256;
 // K_uu's diagonal gets at least this times the signal variance: neighbouring
 // inducing points (a pair is 2 offsets apart) at a scale of tens of mm make
 // K_uu nearly singular, and L_uu^-1 would amplify rounding into A.
 constexpr double kInducingJitterRelative = 1e-6;
 
-// Grows `m` to at least rows x cols (doubling), keeping its used corner.
+// Grows `m` to at least rows x cols, keeping its used corner: a dimension
+// that must grow grows by half again (amortised O(1) per row or column
+// added; A's rows by doubling cost a copy of A in memory and time whenever
+// the model is copied), one that need not keeps its size.
 void reserve_corner(Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols, Eigen::Index used_rows, Eigen::Index used_cols) {
   if (m.rows() >= rows && m.cols() >= cols) return;
-  Eigen::MatrixXd grown(std::max(rows, 2 * m.rows()), std::max(cols, 2 * m.cols()));
+  const auto grow = [](Eigen::Index have, Eigen::Index need) { return have >= need ? have : std::max(need, have + have / 2); };
+  Eigen::MatrixXd grown(grow(m.rows(), rows), grow(m.cols(), cols));
   grown.topLeftCorner(used_rows, used_cols) = m.topLeftCorner(used_rows, used_cols);
   m.swap(grown);
 }
@@ -97,7 +106,7 @@ void SparseImplicitSurface::rebuild() {
   const ImplicitKernel kernel(options_.kernel, h_);
   const double sigma = std::sqrt(h_.noise_variance_mm2), floor = kInducingJitterRelative * h_.signal_variance_mm2;
   const Eigen::Index n = data_.n;
-  reserve_corner(l_uu_, u_.rows(), u_.rows(), 0, 0);
+  reserve_corner(l_uu_, m_, m_, 0, 0);
   const CholeskyReport report = factor_with_jitter(
       l_uu_.topLeftCorner(m_, m_),
       [&](Eigen::Ref<Eigen::MatrixXd> out) {
@@ -107,17 +116,15 @@ void SparseImplicitSurface::rebuild() {
       },
       options_.jitter, "sparse implicit surface inducing covariance");
   jitter_mm2_ = floor + report.jitter_mm2;
-  reserve_corner(a_, u_.rows(), data_.x.rows(), 0, 0);
+  reserve_corner(a_, m_, n, 0, 0);
   auto a = a_.topLeftCorner(m_, n);
   a = kernel.cross(u_.topRows(m_), data_.x.topRows(n)) / sigma;
   l_uu_.topLeftCorner(m_, m_).triangularView<Eigen::Lower>().solveInPlace(a);
-  reserve_corner(b_, u_.rows(), u_.rows(), 0, 0);
+  reserve_corner(b_, m_, m_, 0, 0);
   auto b = b_.topLeftCorner(m_, m_);
   b.setIdentity();
   b.selfadjointView<Eigen::Lower>().rankUpdate(a);
-  Eigen::VectorXd r(n);
-  for (Eigen::Index i = 0; i < n; ++i) r[i] = data_.f[i] - prior(data_.x.row(i).transpose());
-  az_ = a * r / sigma;
+  az_ = a * residuals(0, n) / sigma;
   columns_ = n;
 }
 
@@ -138,22 +145,36 @@ bool SparseImplicitSurface::extend_inducing(Eigen::Index from) {
   reserve_corner(l_uu_, m_, m_, from, from);
   l_uu_.block(from, 0, k, from) = l21t.transpose();
   l_uu_.block(from, from, k, k) = l22;
-  // The new rows of A: L22^-1 (K(new, X) / s - L21 A1), over the columns A has.
+  // The new rows of A, L22^-1 (K(new, X) / s - L21 A1), and of B, A2 A1^T,
+  // a block of columns at a time: A1 (m x n, the model's bulk) is read from
+  // memory once, where two whole products would each read it, at memory's pace.
   const Eigen::Index n = columns_;
   reserve_corner(a_, m_, n, from, n);
-  const auto a1 = a_.topLeftCorner(from, n);
-  Eigen::MatrixXd a2 = kernel.cross(u_.middleRows(from, k), data_.x.topRows(n)) / sigma - l21t.transpose() * a1;
-  l22.triangularView<Eigen::Lower>().solveInPlace(a2);
-  a_.block(from, 0, k, n) = a2;
   reserve_corner(b_, m_, m_, from, from);
-  b_.block(from, 0, k, from) = a2 * a1.transpose();
+  const Eigen::MatrixXd l21 = l21t.transpose();
+  Eigen::MatrixXd b21 = Eigen::MatrixXd::Zero(k, from);
+  for (Eigen::Index first = 0; first < n; first += kColumnBlock) {
+    const Eigen::Index w = std::min(kColumnBlock, n - first);
+    const auto a1 = a_.block(0, first, from, w);
+    Eigen::MatrixXd a2 = kernel.cross(u_.middleRows(from, k), data_.x.middleRows(first, w)) / sigma;
+    subtract_product(a2, l21, a1);
+    l22.triangularView<Eigen::Lower>().solveInPlace(a2);
+    a_.block(from, first, k, w) = a2;
+    b21 += product_transposed(a2, a1);
+  }
+  b_.block(from, 0, k, from) = b21;
+  const auto a2 = a_.block(from, 0, k, n);
   b_.block(from, from, k, k) = a2 * a2.transpose();
   b_.block(from, from, k, k).diagonal().array() += 1.0;
-  Eigen::VectorXd r(n);
-  for (Eigen::Index i = 0; i < n; ++i) r[i] = data_.f[i] - prior(data_.x.row(i).transpose());
   az_.conservativeResize(m_);
-  az_.tail(k) = a2 * r / sigma;
+  az_.tail(k) = a2 * residuals(0, n) / sigma;
   return true;
+}
+
+Eigen::VectorXd SparseImplicitSurface::residuals(Eigen::Index first, Eigen::Index count) const {
+  Eigen::VectorXd r(count);
+  for (Eigen::Index i = 0; i < count; ++i) r[i] = data_.f[first + i] - prior(data_.x.row(first + i).transpose());
+  return r;
 }
 
 void SparseImplicitSurface::add_columns(Eigen::Index from) {
@@ -163,24 +184,35 @@ void SparseImplicitSurface::add_columns(Eigen::Index from) {
   reserve_corner(a_, m_, data_.n, m_, from);
   auto a = a_.block(0, from, m_, k);
   a = kernel.cross(u_.topRows(m_), data_.x.middleRows(from, k)) / sigma;
-  l_uu_.topLeftCorner(m_, m_).triangularView<Eigen::Lower>().solveInPlace(a);
-  b_.topLeftCorner(m_, m_).selfadjointView<Eigen::Lower>().rankUpdate(a);
-  Eigen::VectorXd r(k);
-  for (Eigen::Index i = 0; i < k; ++i) r[i] = data_.f[from + i] - prior(data_.x.row(from + i).transpose());
-  az_ += a * r / sigma;
+  solve_lower_in_place(l_uu_.topLeftCorner(m_, m_), a);
+  add_row_gram_lower(b_.topLeftCorner(m_, m_), a.transpose());
+  az_ += a * residuals(from, k) / sigma;
   columns_ = data_.n;
 }
 
 void SparseImplicitSurface::solve_weights() {
-  Eigen::LLT<Eigen::MatrixXd> llt(b_.topLeftCorner(m_, m_));  // its lower triangle
-  if (llt.info() != Eigen::Success)  // I + A A^T has eigenvalues >= 1: only corrupt input fails
+  l_b_ = b_.topLeftCorner(m_, m_);
+  if (!cholesky_lower_in_place(l_b_))  // I + A A^T has eigenvalues >= 1: only corrupt input fails
     throw RunError("sparse implicit surface: Cholesky of I + A A^T failed (" + std::to_string(m_) + " inducing points)");
-  l_b_ = llt.matrixL();
-  weights_ = l_b_.triangularView<Eigen::Lower>().solve(az_);
-  l_b_.triangularView<Eigen::Lower>().transpose().solveInPlace(weights_);
-  l_uu_.topLeftCorner(m_, m_).triangularView<Eigen::Lower>().transpose().solveInPlace(weights_);
+  weights_ = az_;
+  solve_lower_in_place(l_b_, weights_);
+  solve_lower_transposed_in_place(l_b_, weights_);
+  solve_lower_transposed_in_place(l_uu_.topLeftCorner(m_, m_), weights_);
   if (!weights_.allFinite())
     throw RunError("sparse implicit surface: the weights of " + std::to_string(m_) + " inducing points are not finite");
+  // The variance's quadratic form, k^T M k with M = K_uu^-1 - Sigma^-1 and
+  // Sigma = L_uu B L_uu^T = (L_uu L_B)(L_uu L_B)^T, kept as the lower
+  // triangle of M with its strict part doubled (k^T M k = k^T T k): a block
+  // of queries then costs one triangular product, half the flops of the two
+  // triangular solves |L_uu^-1 k|^2 - |L_B^-1 L_uu^-1 k|^2.
+  const auto l_uu = l_uu_.topLeftCorner(m_, m_);
+  Eigen::MatrixXd l_sigma = l_b_.triangularView<Eigen::Lower>();
+  multiply_lower_in_place(l_uu, l_sigma);
+  cholesky_inverse_in_place(l_sigma);
+  variance_form_ = l_uu;
+  cholesky_inverse_in_place(variance_form_);
+  variance_form_ -= l_sigma;
+  variance_form_.triangularView<Eigen::StrictlyLower>() *= 2.0;
 }
 
 void SparseImplicitSurface::require_touches() const {
@@ -190,15 +222,12 @@ void SparseImplicitSurface::require_touches() const {
 Eigen::VectorXd SparseImplicitSurface::mean(const Eigen::Ref<const Eigen::MatrixX3d>& q, int threads) const {
   require_touches();
   const ImplicitKernel kernel(options_.kernel, h_);
-  const Eigen::Matrix3Xd u = u_.topRows(m_).transpose();  // a point per column: contiguous
+  const auto u = u_.topRows(m_);
   Eigen::VectorXd out(q.rows());
   for_each_block(static_cast<std::size_t>(q.rows()), resolve_threads(threads), 64, [&](std::size_t begin, std::size_t end) {
-    for (auto j = static_cast<Eigen::Index>(begin); j < static_cast<Eigen::Index>(end); ++j) {
-      const Eigen::Vector3d p = q.row(j).transpose();
-      double sum = prior(p);
-      for (Eigen::Index i = 0; i < m_; ++i) sum += weights_[i] * kernel.covariance((u.col(i) - p).norm());
-      out[j] = sum;
-    }
+    const auto first = static_cast<Eigen::Index>(begin), count = static_cast<Eigen::Index>(end - begin);
+    out.segment(first, count) = kernel.weighted_sums(u, weights_, q.middleRows(first, count));
+    for (Eigen::Index j = first; j < first + count; ++j) out[j] += prior(q.row(j).transpose());
   });
   return out;
 }
@@ -206,15 +235,13 @@ Eigen::VectorXd SparseImplicitSurface::mean(const Eigen::Ref<const Eigen::Matrix
 Eigen::VectorXd SparseImplicitSurface::variance(const Eigen::Ref<const Eigen::MatrixX3d>& q, std::size_t* clamped) const {
   require_touches();
   const ImplicitKernel kernel(options_.kernel, h_);
-  const auto l_uu = l_uu_.topLeftCorner(m_, m_).triangularView<Eigen::Lower>();
-  const auto l_b = l_b_.triangularView<Eigen::Lower>();
   Eigen::VectorXd out(q.rows());
   for (Eigen::Index first = 0; first < q.rows(); first += kInducingQueryBlock) {
     const Eigen::Index b = std::min(kInducingQueryBlock, q.rows() - first);
-    Eigen::MatrixXd w = l_uu.solve(kernel.cross(u_.topRows(m_), q.middleRows(first, b)));  // L_uu^-1 K_u*
-    out.segment(first, b) = h_.signal_variance_mm2 - w.colwise().squaredNorm().transpose().array();
-    l_b.solveInPlace(w);  // L_B^-1 L_uu^-1 K_u*
-    out.segment(first, b) += w.colwise().squaredNorm().transpose();
+    const Eigen::MatrixXd k = kernel.cross_vectorised(u_.topRows(m_), q.middleRows(first, b));
+    Eigen::MatrixXd tk = k;
+    multiply_lower_in_place(variance_form_, tk);
+    out.segment(first, b) = h_.signal_variance_mm2 - (k.array() * tk.array()).colwise().sum().transpose();
   }
   const std::size_t below = clamp_latent_variance(out, "sparse implicit surface", data_.n);
   if (clamped) *clamped = below;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <Eigen/Dense>
 
@@ -60,29 +61,54 @@ void MarkerFill::fill_dots(const cv::Mat& bgr, const std::vector<Marker>& dots, 
     const int v0 = std::max(0, static_cast<int>(std::floor(cy)) - pad), v1 = std::min(bgr.rows - 1, static_cast<int>(std::ceil(cy)) + pad);
     Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 3> atb = Eigen::Matrix<double, 6, 3>::Zero();
-    int ring = 0, inside = 0;
     auto terms = [&](double dx, double dy) {
       Eigen::Matrix<double, 6, 1> t;
       t << 1, dx, dy, dx * dx, dx * dy, dy * dy;
       return t;
     };
     const double scale = 1.0 / outer;  // terms of order 1
-    for (int v = v0; v <= v1; ++v)
-      for (int u = u0; u <= u1; ++u) {
+    // The columns of row v within `radius2` of the centre (a pixel wider: the
+    // distances are tested again).
+    auto span = [&](int v, double radius2, int& first, int& last) {
+      const double dy = v - cy, half = std::sqrt(std::max(0.0, radius2 - dy * dy));
+      first = std::max(u0, static_cast<int>(std::floor(cx - half)) - 1);
+      last = std::min(u1, static_cast<int>(std::ceil(cx + half)) + 1);
+    };
+    int inside = 0;
+    for (int v = v0; v <= v1; ++v) {
+      int first, last;
+      span(v, reach2, first, last);
+      const std::uint8_t* row = mask.ptr<std::uint8_t>(v);
+      for (int u = first; u <= last; ++u) {
+        const double dx = u - cx, dy = v - cy;
+        if (dx * dx + dy * dy <= reach2) inside += row[u] != 0;
+      }
+    }
+    if (inside == 0) continue;  // nothing to fill
+    int ring = 0;
+    for (int v = v0; v <= v1; ++v) {
+      int first, last;
+      span(v, outer2, first, last);
+      const std::uint8_t* row = mask.ptr<std::uint8_t>(v);
+      const cv::Vec3b* colour = bgr.ptr<cv::Vec3b>(v);
+      for (int u = first; u <= last; ++u) {
         const double dx = u - cx, dy = v - cy, r2 = dx * dx + dy * dy;
-        const bool masked = mask.at<std::uint8_t>(v, u) != 0;
-        if (r2 <= reach2) {
-          inside += masked;
-          continue;
+        if (r2 <= reach2 || r2 > outer2 || row[u]) continue;
+        // The normal equations' lower triangle and right sides, in scalars
+        // (Eigen's rank update per pixel was a call, and a vector built
+        // per pixel stalls on reading back its halves: the fill's cost).
+        const double x = dx * scale, y = dy * scale;
+        const double t[6] = {1, x, y, x * x, x * y, y * y};
+        const cv::Vec3b& p = colour[u];
+        const double c[3] = {static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])};
+        for (int i = 0; i < 6; ++i) {
+          for (int j = i; j < 6; ++j) ata(j, i) += t[i] * t[j];
+          for (int k = 0; k < 3; ++k) atb(i, k) += t[i] * c[k];
         }
-        if (r2 > outer2 || masked) continue;
-        const auto t = terms(dx * scale, dy * scale);
-        const cv::Vec3b& p = bgr.at<cv::Vec3b>(v, u);
-        ata.selfadjointView<Eigen::Lower>().rankUpdate(t);
-        atb += t * Eigen::RowVector3d(p[0], p[1], p[2]);
         ++ring;
       }
-    if (inside == 0 || ring < 12) continue;  // nothing to fill, or too little around it (the image's corner)
+    }
+    if (ring < 12) continue;  // too little around it (the image's corner)
     const Eigen::Matrix<double, 6, 3> coefficients = ata.selfadjointView<Eigen::Lower>().ldlt().solve(atb);
     for (int v = v0; v <= v1; ++v)
       for (int u = u0; u <= u1; ++u) {
@@ -98,8 +124,10 @@ void MarkerFill::fill_dots(const cv::Mat& bgr, const std::vector<Marker>& dots, 
 FilledPair MarkerFill::fill(const cv::Mat& image, const cv::Mat& reference) {
   CV_Assert(image.type() == CV_8UC3 && reference.type() == CV_8UC3 && image.size() == reference.size());
   // The same reference as last time (the same pixels): its dots and its fill are known.
-  const bool same_reference = reference_seen_.size() == reference.size() &&
-                              cv::norm(reference_seen_, reference, cv::NORM_INF) == 0;
+  bool same_reference = reference_seen_.size() == reference.size();
+  const std::size_t row_bytes = reference.cols * reference.elemSize();
+  for (int v = 0; same_reference && v < reference.rows; ++v)
+    same_reference = std::memcmp(reference_seen_.ptr(v), reference.ptr(v), row_bytes) == 0;
   if (!same_reference) {
     reference.copyTo(reference_seen_);
     reference_dots_ = detector_.detect(reference, "reference");

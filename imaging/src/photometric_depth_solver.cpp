@@ -13,6 +13,12 @@ PhotometricDepthSolver::PhotometricDepthSolver(sensor::PhotometricCalibration ca
       options_(options),
       p_(calibration_.height_px, calibration_.width_px - 1, CV_64FC1),
       q_(calibration_.height_px - 1, calibration_.width_px, CV_64FC1) {
+  // The polynomial's terms r^i g^j b^k in the calibration's order (i, then
+  // j, then k; sensor::PhotometricCalibration::monomials).
+  for (int i = 0; i <= calibration_.degree; ++i)
+    for (int j = 0; i + j <= calibration_.degree; ++j)
+      for (int k = 0; i + j + k <= calibration_.degree; ++k) exponents_.push_back({i, j, k});
+  exponents_.resize(std::min(exponents_.size(), calibration_.gx.size()));  // as gradient(): gx's terms
   if (options_.border == PoissonBorder::Zero)
     zero_border_ = std::make_unique<DstPoisson>(calibration_.width_px, calibration_.height_px);
   else
@@ -22,10 +28,18 @@ PhotometricDepthSolver::PhotometricDepthSolver(sensor::PhotometricCalibration ca
 DepthResult PhotometricDepthSolver::solve(const cv::Mat& image, const cv::Mat& reference) {
   const int w = image.cols, h = image.rows;
   DepthResult out;
-  out.gx = cv::Mat::zeros(h, w, CV_64FC1);
-  out.gy = cv::Mat::zeros(h, w, CV_64FC1);
-  cv::Mat difference(h, w, CV_8UC1);
+  gx_.create(h, w, CV_64FC1);
+  gy_.create(h, w, CV_64FC1);
+  out.gx = gx_;
+  out.gy = gy_;
+  cv::Mat& difference = difference_;
+  difference.create(h, w, CV_8UC1);
   const int flat = static_cast<int>(std::floor(options_.flat_grey));
+  const double per_grey = 1.0 / calibration_.scale_grey;
+  const int degree = calibration_.degree;
+  const std::size_t terms = exponents_.size();
+  const double* coefficient_x = calibration_.gx.data();
+  const double* coefficient_y = calibration_.gy.data();
   for (int v = 0; v < h; ++v) {
     const cv::Vec3b* a = image.ptr<cv::Vec3b>(v);
     const cv::Vec3b* b = reference.ptr<cv::Vec3b>(v);
@@ -38,11 +52,23 @@ DepthResult PhotometricDepthSolver::solve(const cv::Mat& image, const cv::Mat& r
       d[u] = static_cast<std::uint8_t>(largest);
       if (largest <= flat) {
         ++out.flat_pixels;
+        gx[u] = gy[u] = 0;
         continue;
       }
-      const Eigen::Vector2d g = calibration_.gradient(Eigen::Vector3d(dr, dg, db));
-      gx[u] = g.x();
-      gy[u] = g.y();
+      // calibration_.gradient(dr, dg, db), term for term in its order (a
+      // call per pixel cost more than the polynomial).
+      const double r = dr * per_grey, g = dg * per_grey, bl = db * per_grey;
+      double rp[8], gp[8], bp[8];
+      rp[0] = gp[0] = bp[0] = 1;
+      for (int e = 1; e <= degree; ++e) rp[e] = rp[e - 1] * r, gp[e] = gp[e - 1] * g, bp[e] = bp[e - 1] * bl;
+      double x = 0, y = 0;
+      for (std::size_t t = 0; t < terms; ++t) {
+        const double m = rp[exponents_[t][0]] * gp[exponents_[t][1]] * bp[exponents_[t][2]];
+        x += coefficient_x[t] * m;
+        y += coefficient_y[t] * m;
+      }
+      gx[u] = x;
+      gy[u] = y;
     }
   }
   // Pixel-centred gradients to staggered differences in mm per pixel.
@@ -59,7 +85,8 @@ DepthResult PhotometricDepthSolver::solve(const cv::Mat& image, const cv::Mat& r
     for (int u = 0; u < w; ++u) q[u] = 0.5 * (g0[u] + g1[u]) * pitch;
   }
   if (zero_border_) {
-    zero_border_->solve(p_, q_).convertTo(out.height_mm, CV_32FC1);
+    zero_border_->solve(p_, q_, height_);
+    height_.convertTo(out.height_mm, CV_32FC1);
   } else {
     cv::Mat h = free_border_->solve(p_, q_);
     // Zero where the gel is flat; without any flat pixel, the lowest is zero.

@@ -112,21 +112,7 @@ class CameraSource final : public Stage {
     s.source = source();
     s.size = size_, s.fps = fps_, s.pixel_format = pixel_format_, s.crop = crop_, s.resize = resize_;
     s.open_timeout_s = queue_.frame_timeout_s;
-    if (!preset_) return s;
-    const camera::CameraPreset preset = camera::read_camera_preset(*preset_);
-    const auto take = [&](auto& value, const auto& from_preset, const char* name) {
-      if (value || !from_preset) return;
-      value = from_preset;
-      if (!ctx) return;
-      using V = std::decay_t<decltype(*from_preset)>;
-      if constexpr (std::is_same_v<V, double> || std::is_same_v<V, std::string>) ctx->used(name, *from_preset);
-      else ctx->used(name, std::vector<std::int64_t>(from_preset->begin(), from_preset->end()));
-    };
-    take(s.size, preset.size, "size");
-    take(s.fps, preset.fps, "fps");
-    take(s.pixel_format, preset.pixel_format, "pixel_format");
-    take(s.crop, preset.crop, "crop");
-    take(s.resize, preset.resize, "resize");
+    if (preset_) camera::fill_from_preset(s, *preset_, ctx);
     return s;
   }
 

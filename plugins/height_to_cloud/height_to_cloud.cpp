@@ -85,6 +85,13 @@ class HeightToCloud final : public Stage {
     const bool want_base = io.wants("cloud_base");
     auto tactile = std::make_shared<TactileCloud>();
     const cv::Mat& h = map->height_mm;
+    const std::size_t most = static_cast<std::size_t>((h.rows + stride_px_ - 1) / stride_px_) *
+                             static_cast<std::size_t>((h.cols + stride_px_ - 1) / stride_px_);
+    points->reserve(most);
+    reference->reserve(most);
+    if (want_base) base->reserve(most);
+    tactile->displacement_mm.reserve(most);
+    tactile->marker_ids.reserve(most);
     for (int v = stride_px_ / 2; v < h.rows; v += stride_px_)
       for (int u = stride_px_ / 2; u < h.cols; u += stride_px_) {
         if (!map->valid.at<std::uint8_t>(v, u)) continue;

@@ -5,11 +5,19 @@
 // hold both views side by side. A pair further apart than the skew is
 // refused, counted (pairs_refused) and logged; the older frame is let go
 // and pairing goes on. The no-contact reference is the mean of the first
-// pairs; `done` turns true on a recording's last pair.
+// pairs; `done` turns true on a recording's last pair. `crop` and `resize`
+// shape each camera's frames (a side-by-side camera's whole frame, before it
+// is cut), a sensor file's camera: section gives them as a preset, and
+// `record` keeps every frame each camera delivered, lossless, as
+// camera_source does (DIR/left and DIR/right, or DIR for one camera).
+#include <filesystem>
+
 #include <opencv2/imgproc.hpp>
 
 #include "touchcloud/plugin.hpp"
+#include "touchcloud/plugin_kit/camera/camera_preset.hpp"
 #include "touchcloud/plugin_kit/camera/queue_parameters.hpp"
+#include "touchcloud/plugin_kit/camera/recording.hpp"
 #include "touchcloud/plugin_kit/camera/stereo_feed.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
@@ -32,9 +40,10 @@ class StereoCameraSource final : public Stage {
     }
   };
   Camera both_, left_, right_;
-  std::optional<std::array<int, 2>> size_;
+  std::optional<std::array<int, 2>> size_, resize_;
+  std::optional<std::array<int, 4>> crop_;
   std::optional<double> fps_;
-  std::optional<std::string> pixel_format_;
+  std::optional<std::string> pixel_format_, preset_, record_;
   double max_skew_ms_ = 10;
   bool colour_ = false;
   int warmup_frames_ = 0, reference_frames_ = 1;
@@ -60,6 +69,17 @@ class StereoCameraSource final : public Stage {
     p.add("fps", fps_).above(0).unit("frames/s")
         .doc("asked of a device; a '{iteration}' recording's frame k is at k / fps (30 when not set)");
     p.add("pixel_format", pixel_format_).doc("FOURCC asked of a device (MJPG, YUYV)");
+    p.add("crop", crop_).range(0, 100000).unit("px")
+        .doc("x, y, width, height kept of each camera's frame (a side-by-side camera: of the whole frame)");
+    p.add("resize", resize_).range(1, 100000).unit("px").doc("width, height after cropping (area interpolation)");
+    p.add("preset", preset_)
+        .input_file()
+        .doc("a sensor file whose camera: section gives size, fps, pixel_format, crop and resize (this stage's own "
+             "parameters override it)");
+    p.add("record", record_)
+        .doc("a folder to record every frame captured into, each camera's in DIR/left and DIR/right (index.csv, "
+             "frames/K.png; one side-by-side camera: in DIR), replayed by left_frames: DIR/left/index.csv and "
+             "right_frames: DIR/right/index.csv; relative to the current folder, kept whatever ends the run");
     p.add("colour", colour_, false)
         .doc("pairs in 8-bit BGR (the colour-pattern GelStereo); false: 8-bit grey (the marker GelStereo)");
     p.add("warmup_frames", warmup_frames_, 0).range(0, 100000).unit("pairs")
@@ -98,6 +118,7 @@ class StereoCameraSource final : public Stage {
                                         "warm-up and reference included");
   }
 
+  std::vector<std::unique_ptr<camera::Recording>> recordings_;  // each camera's, declared before the feed that writes them
   std::unique_ptr<camera::StereoFeed> feed_;
   StereoFramePtr reference_;
   std::optional<camera::ShotPair> pending_;  // a recording's next pair, read ahead to know `done`
@@ -109,26 +130,45 @@ class StereoCameraSource final : public Stage {
     const auto recorded = [](const Camera& c) { return !c.device.has_value(); };
     return side_by_side() ? recorded(both_) : recorded(left_) && recorded(right_);
   }
-  camera::CaptureSettings settings(const Camera& c) const {
+  // The preset's values where this stage's parameters are not set.
+  camera::CaptureSettings settings(const Camera& c, RunContext* ctx) const {
     camera::CaptureSettings s;
     s.kind = c.kind(), s.source = c.source();
-    s.size = size_, s.fps = fps_, s.pixel_format = pixel_format_;
+    s.size = size_, s.fps = fps_, s.pixel_format = pixel_format_, s.crop = crop_, s.resize = resize_;
     s.open_timeout_s = queue_.frame_timeout_s;
+    if (preset_) camera::fill_from_preset(s, *preset_, ctx);
     return s;
   }
   // The camera's first frame (none for a live camera); ParameterError naming
   // the camera's parameter.
   std::optional<cv::Mat> check_camera(const Camera& c, const std::string& side) const {
     try {
-      return camera::first_frame(settings(c));
+      return camera::first_frame(settings(c, nullptr));
     } catch (const InputError& e) {
       throw ParameterError(c.parameter(side), e.what());
     }
+  }
+  // Where each camera's recording goes: DIR/left and DIR/right, or DIR.
+  std::vector<std::filesystem::path> recording_folders() const {
+    const std::filesystem::path dir(*record_);
+    if (side_by_side()) return {dir};
+    return {dir / "left", dir / "right"};
   }
 
   // Recordings are opened and their first frames read, so that `validate`
   // reports a side-by-side frame of odd width and two cameras of different sizes.
   void on_check(RunContext&) override {
+    if (preset_) {
+      try {
+        camera::read_camera_preset(*preset_);
+      } catch (const InputError& e) {
+        throw ParameterError("preset", e.what());
+      }
+    }
+    if (record_)
+      for (const auto& folder : recording_folders())
+        if (std::filesystem::exists(folder / "index.csv"))
+          throw ParameterError("record", "the folder " + folder.string() + " already holds a recording (index.csv)");
     if (side_by_side()) {
       if (const auto frame = check_camera(both_, "")) {
         try {
@@ -147,16 +187,25 @@ class StereoCameraSource final : public Stage {
                                std::to_string(left->cols) + " x " + std::to_string(left->rows) + " px");
   }
 
-  std::unique_ptr<camera::FrameFeed> open(const Camera& c) const {
-    return std::make_unique<camera::FrameFeed>(std::make_unique<camera::Capture>(settings(c)),
+  // A camera's capture thread and queue, recording into `recording` when given.
+  std::unique_ptr<camera::FrameFeed> open(const Camera& c, RunContext& ctx, camera::Recording* recording) const {
+    std::function<void(const camera::Shot&)> record;
+    if (recording) record = [recording](const camera::Shot& shot) { recording->add(shot); };
+    return std::make_unique<camera::FrameFeed>(std::make_unique<camera::Capture>(settings(c, &ctx)),
                                                static_cast<std::size_t>(queue_.queue_frames), queue_.policy(finite()),
-                                               queue_.realtime);
+                                               queue_.realtime, record);
   }
 
   void on_configure(RunContext& ctx) override {
     ctx.used("queue_policy", std::string(queue_.policy(finite()) == camera::WhenBehind::block ? "block" : "drop_oldest"));
-    feed_ = side_by_side() ? std::make_unique<camera::StereoFeed>(open(both_))
-                           : std::make_unique<camera::StereoFeed>(open(left_), open(right_), max_skew_ms_);
+    if (record_) {
+      for (const auto& folder : recording_folders()) recordings_.push_back(std::make_unique<camera::Recording>(folder));
+      ctx.log("recording every frame into " + *record_);
+    }
+    const auto recording = [&](std::size_t k) { return k < recordings_.size() ? recordings_[k].get() : nullptr; };
+    feed_ = side_by_side() ? std::make_unique<camera::StereoFeed>(open(both_, ctx, recording(0)))
+                           : std::make_unique<camera::StereoFeed>(open(left_, ctx, recording(0)),
+                                                                  open(right_, ctx, recording(1)), max_skew_ms_);
     for (int i = 0; i < warmup_frames_; ++i)
       if (!next_pair(ctx)) throw InputError(describe() + " ends within its warm-up pairs");
     if (reference_frames_ > 0) {

@@ -14,6 +14,7 @@
 
 #include "bindings.hpp"
 #include "touchcloud/stream.hpp"
+#include "touchcloud/thread_end.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
 #include "value_arrays.hpp"
 
@@ -45,17 +46,13 @@ class Stream {
       changed_.notify_all();
     };
     thread_ = std::thread([this] {
-      try {
-        RunResult r = stream_pipeline(pipeline_, options_, stream_);
-        std::lock_guard lock(mutex_);
-        result_ = std::move(r);
-      } catch (...) {
-        std::lock_guard lock(mutex_);
-        error_ = std::current_exception();
-      }
-      std::lock_guard lock(mutex_);
-      ended_ = true;
-      changed_.notify_all();
+      run_to_end(
+          [this] {
+            RunResult r = stream_pipeline(pipeline_, options_, stream_);
+            std::lock_guard lock(mutex_);
+            result_ = std::move(r);
+          },
+          mutex_, changed_, error_, ended_);
     });
   }
   ~Stream() { close(); }

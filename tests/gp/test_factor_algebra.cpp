@@ -53,5 +53,21 @@ TEST(GpFactorAlgebra, RowSolveAgreesOnOneThreadAndOnMany) {
   }
 }
 
+// L b for a factor past the size where OpenBLAS takes over (and below it),
+// with garbage in L's strict upper triangle, which must not be read.
+TEST(GpFactorAlgebra, LowerProductReadsOnlyTheLowerTriangle) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g;
+  for (const Eigen::Index n : {Eigen::Index{40}, Eigen::Index{300}}) {
+    Eigen::MatrixXd l(n, n), b(n, 7);
+    for (Eigen::Index i = 0; i < l.size(); ++i) l.data()[i] = g(rng);
+    for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = g(rng);
+    const Eigen::MatrixXd expected = l.triangularView<Eigen::Lower>() * b;
+    l.triangularView<Eigen::StrictlyUpper>().setConstant(1e300);
+    multiply_lower_in_place(l, b);
+    EXPECT_LT((b - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff()) << "n " << n;
+  }
+}
+
 }  // namespace
 }  // namespace touchcloud::gp

@@ -111,5 +111,36 @@ TEST(GpMaternSums, WriteOnlyTheQueriesAsked) {
   EXPECT_EQ(out[4], -1.0);
 }
 
+// In 3-D: every count of points round the vector width (odd query counts
+// too, the last query paired with itself), a point at a query and one far
+// enough to underflow, against a long-double reference.
+TEST(GpMaternSums, ThreeDimensionalSumsEqualALongDoubleReference) {
+  if (!simd_path_runs_here(SimdPath::avx2_fma)) GTEST_SKIP() << "no fused path in this build or on this CPU";
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-30.0, 30.0);
+  const double c = 5.0 / (12.0 * 12.0);
+  for (Eigen::Index n = 1; n <= 11; ++n) {
+    Eigen::MatrixX3d p(n, 3), q(3, 3);
+    Eigen::VectorXd w(n);
+    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
+    for (Eigen::Index i = 0; i < q.size(); ++i) q.data()[i] = u(rng);
+    for (Eigen::Index i = 0; i < n; ++i) w[i] = u(rng);
+    q.row(1) = p.row(0);                             // r = 0
+    if (n > 1) p.row(n - 1) << 1e4, 0, 0;            // e^-s underflows
+    Eigen::VectorXd out(3);
+    ASSERT_TRUE(matern52_unit_sums_3d(p, w, q, c, out.data()));
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      long double sum = 0, magnitude = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const long double s = std::sqrt(c * static_cast<long double>((p.row(i) - q.row(j)).squaredNorm()));
+        const long double term = w[i] * (1 + s + s * s / 3) * std::exp(-s);
+        sum += term;
+        magnitude += std::fabs(term);
+      }
+      EXPECT_LE(std::fabs(out[j] - sum), 8 * 2.2e-16L * magnitude) << "n " << n << ", query " << j;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace touchcloud::gp

@@ -49,9 +49,12 @@ TEST(DstPoisson, RecoversAKnownHeightMapFromItsExactGradients) {
 }
 
 // The row transforms and the column systems at their smallest: one interior
-// row, one interior column, and a 240-row image's prime-length case above.
+// row, one interior column, and a 240-row image's prime-length case above;
+// widths whose rows are widened by one (12: 11 interior columns, transformed
+// as 12) and by two (23: 21 as 23), with an odd and an even count of rows.
 TEST(DstPoisson, RecoversExactGradientsAtTheSmallestSizes) {
-  for (const auto& [w, h] : {std::pair{3, 3}, std::pair{7, 3}, std::pair{3, 7}, std::pair{5, 4}}) {
+  for (const auto& [w, h] : {std::pair{3, 3}, std::pair{7, 3}, std::pair{3, 7}, std::pair{5, 4}, std::pair{12, 5},
+                             std::pair{23, 9}, std::pair{23, 4}}) {
     cv::Mat height = cv::Mat::zeros(h, w, CV_64FC1);
     for (int v = 1; v + 1 < h; ++v)
       for (int u = 1; u + 1 < w; ++u) height.at<double>(v, u) = 0.3 * u - 0.2 * v + 0.1 * u * v;
@@ -109,6 +112,36 @@ TEST(PhotometricDepth, RecoversASpherePressFromItsImageAfterCalibration) {
   EXPECT_LT(rmse, 0.05);
   EXPECT_LT(worst, 0.15);
   EXPECT_GT(iou, 0.8);
+}
+
+// The solver evaluates the polynomial itself, pixel by pixel (a call into
+// the calibration per pixel cost more than the polynomial): its gradients
+// are the calibration's own, to the bit, for every difference a press gives
+// (fits of degree 3 and 5).
+TEST(PhotometricDepth, PixelGradientsAreTheCalibrationsOwnToTheBit) {
+  simulation::GelSightSimulation sim(ball_scene(), 4);
+  press_pad_into(sim, {0.4, -0.3}, 0.6);
+  const cv::Mat image = sim.render().image, reference = sim.render_reference().image;
+  TempDir dir3, dir5;
+  const std::vector<Eigen::Vector2d> presses = {{-1.5, -1.0}, {1.5, -1.0}, {-1.0, 1.5}, {1.0, 1.5}};
+  const auto degree3 = sensor::load_photometric_calibration(calibrate_on_ball(dir3, presses, 3));
+  const auto degree5 = sensor::load_photometric_calibration(calibrate_on_ball(dir5, presses, 5));
+  for (const auto* c : {&degree3, &degree5}) {
+    imaging::PhotometricDepthSolver solver(*c, {});
+    const auto r = solver.solve(image, reference);
+    int compared = 0, differing = 0;
+    for (int v = 0; v < image.rows; ++v)
+      for (int u = 0; u < image.cols; ++u) {
+        const cv::Vec3b a = image.at<cv::Vec3b>(v, u), b = reference.at<cv::Vec3b>(v, u);
+        const int db = a[0] - b[0], dg = a[1] - b[1], dr = a[2] - b[2];
+        if (std::max({std::abs(db), std::abs(dg), std::abs(dr)}) <= 3) continue;  // flat (flat_grey 3)
+        const Eigen::Vector2d g = c->gradient(Eigen::Vector3d(dr, dg, db));
+        differing += g.x() != r.gx.at<double>(v, u) || g.y() != r.gy.at<double>(v, u);
+        ++compared;
+      }
+    EXPECT_GT(compared, 1000) << "degree " << c->degree;
+    EXPECT_EQ(differing, 0) << "degree " << c->degree << ": of " << compared << " pixels";
+  }
 }
 
 TEST(PhotometricDepth, AFreeBorderKeepsTheHeightOfAContactThatRunsOffTheImage) {

@@ -1,8 +1,13 @@
 #include "touchcloud/plugin_kit/camera/camera_preset.hpp"
 
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
 #include <yaml-cpp/yaml.h>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/run_context.hpp"
 
 namespace touchcloud::camera {
 
@@ -49,6 +54,23 @@ CameraPreset read_camera_preset(const std::filesystem::path& file) {
     throw InputError(name + " cannot be read: " + e.what());
   }
   return preset;
+}
+
+void fill_from_preset(CaptureSettings& s, const std::filesystem::path& file, RunContext* ctx) {
+  const CameraPreset preset = read_camera_preset(file);
+  const auto take = [&](auto& value, const auto& from_preset, const char* name) {
+    if (value || !from_preset) return;
+    value = from_preset;
+    if (!ctx) return;
+    using V = std::decay_t<decltype(*from_preset)>;
+    if constexpr (std::is_same_v<V, double> || std::is_same_v<V, std::string>) ctx->used(name, *from_preset);
+    else ctx->used(name, std::vector<std::int64_t>(from_preset->begin(), from_preset->end()));
+  };
+  take(s.size, preset.size, "size");
+  take(s.fps, preset.fps, "fps");
+  take(s.pixel_format, preset.pixel_format, "pixel_format");
+  take(s.crop, preset.crop, "crop");
+  take(s.resize, preset.resize, "resize");
 }
 
 }  // namespace touchcloud::camera

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "touchcloud/error.hpp"
+#include "touchcloud/thread_end.hpp"
 
 namespace touchcloud::camera {
 
@@ -27,44 +28,38 @@ FrameFeed::~FrameFeed() {
 
 void FrameFeed::capture_loop() {
   const auto start = std::chrono::steady_clock::now();
-  try {
-    for (;;) {
-      std::optional<Shot> shot = capture_->next();
-      if (shot && realtime_) {  // a recording delivered at the pace it was recorded
-        const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                     std::chrono::duration<double>(shot->stamp.timestamp_s));
-        std::unique_lock lock(mutex_);
-        if (changed_.wait_until(lock, due, [&] { return stopping_; })) return;
-        shot->captured_at = std::chrono::steady_clock::now();  // when a camera would have delivered it
-      }
-      if (shot && on_capture_) on_capture_(*shot);
-      std::unique_lock lock(mutex_);
-      if (stopping_) return;
-      if (!shot) break;
-      ++captured_;
-      if (!first_sequence_) first_sequence_ = shot->stamp.sequence;
-      if (queue_.size() >= capacity_) {
-        if (when_behind_ == WhenBehind::drop_oldest) {
-          queue_.pop_front();
-          ++dropped_;
-        } else {
-          changed_.wait(lock, [&] { return stopping_ || queue_.size() < capacity_; });
+  run_to_end(
+      [&] {
+        for (;;) {
+          std::optional<Shot> shot = capture_->next();
+          if (shot && realtime_) {  // a recording delivered at the pace it was recorded
+            const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                         std::chrono::duration<double>(shot->stamp.timestamp_s));
+            std::unique_lock lock(mutex_);
+            if (changed_.wait_until(lock, due, [&] { return stopping_; })) return;
+            shot->captured_at = std::chrono::steady_clock::now();  // when a camera would have delivered it
+          }
+          if (shot && on_capture_) on_capture_(*shot);
+          std::unique_lock lock(mutex_);
           if (stopping_) return;
+          if (!shot) return;
+          ++captured_;
+          if (!first_sequence_) first_sequence_ = shot->stamp.sequence;
+          if (queue_.size() >= capacity_) {
+            if (when_behind_ == WhenBehind::drop_oldest) {
+              queue_.pop_front();
+              ++dropped_;
+            } else {
+              changed_.wait(lock, [&] { return stopping_ || queue_.size() < capacity_; });
+              if (stopping_) return;
+            }
+          }
+          queue_.push_back(std::move(*shot));
+          lock.unlock();
+          changed_.notify_all();
         }
-      }
-      queue_.push_back(std::move(*shot));
-      lock.unlock();
-      changed_.notify_all();
-    }
-  } catch (...) {
-    std::lock_guard lock(mutex_);
-    error_ = std::current_exception();
-  }
-  {
-    std::lock_guard lock(mutex_);
-    ended_ = true;
-  }
-  changed_.notify_all();
+      },
+      mutex_, changed_, error_, ended_);
 }
 
 bool FrameFeed::wait_for_frame_or_end(std::unique_lock<std::mutex>& lock, double timeout_s) {

@@ -32,8 +32,8 @@ void Recording::add(const Shot& shot) {
   }
   if (!written) throw RunError("cannot write the recorded frame " + file.string());
   char row[96];
-  std::snprintf(row, sizeof row, "%lld,%.17g,%s\n", static_cast<long long>(shot.stamp.sequence), shot.stamp.timestamp_s,
-                name);
+  // The camera's own clock: two cameras' recordings pair on replay as they did live.
+  std::snprintf(row, sizeof row, "%lld,%.17g,%s\n", static_cast<long long>(shot.stamp.sequence), shot.clock_s, name);
   // The row follows its frame, flushed: a reader never finds a row whose
   // file is missing.
   if (!(index_ << row << std::flush)) throw RunError("cannot write " + (dir_ / "index.csv").string());

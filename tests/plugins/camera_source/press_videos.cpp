@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "test_support.hpp"
+#include "video_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -30,12 +30,7 @@ void write_frame_files(const fs::path& dir, const std::vector<cv::Mat>& frames) 
 }
 
 bool write_video(const fs::path& file, const std::string& fourcc, const std::vector<cv::Mat>& frames) {
-  cv::VideoWriter writer(file.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]),
-                         25, frames.front().size(), true);
-  if (!writer.isOpened()) return false;
-  for (const auto& f : frames) writer.write(f);
-  writer.release();
-  return true;
+  return write_video_file(file, fourcc, frames, 25);
 }
 
 }  // namespace touchcloud::test

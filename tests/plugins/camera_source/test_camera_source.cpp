@@ -10,6 +10,7 @@
 
 #include "pipeline_fixture.hpp"
 #include "press_videos.hpp"
+#include "stream_results.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/mono_colour_frame.hpp"
 
@@ -57,15 +58,6 @@ class CameraSource : public PipelineFixture {
     o.out_dir = out;
     return run_pipeline(p, o);
   }
-  // The clouds a run wrote, in frame order.
-  static std::vector<std::string> clouds(const fs::path& out) {
-    std::vector<std::string> found;
-    for (int k = 0; fs::exists(out / ("cloud_" + std::to_string(k) + ".pcd")); ++k)
-      found.push_back(read_file(out / ("cloud_" + std::to_string(k) + ".pcd")));
-    return found;
-  }
-  static double metric(const RunResult& r, const std::string& key) { return r.record.metrics.at(key).values.back(); }
-
   std::vector<cv::Mat> frames_;
 };
 

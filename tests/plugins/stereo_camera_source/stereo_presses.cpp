@@ -1,12 +1,13 @@
 #include "stereo_presses.hpp"
 
 #include <fstream>
+#include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "test_support.hpp"
+#include "video_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -37,10 +38,7 @@ void write_side(const fs::path& dir, const std::string& side, const std::vector<
 }
 
 void write_video(const fs::path& file, const std::vector<cv::Mat>& frames, double fps) {
-  cv::VideoWriter writer(file.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('F', 'F', 'V', '1'), fps,
-                         frames.front().size(), true);
-  if (!writer.isOpened()) throw std::runtime_error("cannot write " + file.string());
-  for (const auto& f : frames) writer.write(f);
+  if (!write_video_file(file, "FFV1", frames, fps)) throw std::runtime_error("cannot write " + file.string());
 }
 
 std::vector<cv::Mat> lefts(const std::vector<ViewPair>& pairs) {

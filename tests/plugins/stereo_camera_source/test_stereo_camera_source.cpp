@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "pipeline_fixture.hpp"
+#include "stream_results.hpp"
 #include "stereo_presses.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
 #include "touchcloud/types/stereo_frame.hpp"
@@ -85,14 +86,6 @@ class StereoCameraSource : public PipelineFixture {
     run_pipeline(p, o);
     return clouds(dir_ / "from_files");
   }
-  static std::vector<std::string> clouds(const fs::path& out) {
-    std::vector<std::string> found;
-    for (int k = 0; fs::exists(out / ("cloud_" + std::to_string(k) + ".pcd")); ++k)
-      found.push_back(read_file(out / ("cloud_" + std::to_string(k) + ".pcd")));
-    return found;
-  }
-  static double metric(const RunResult& r, const std::string& key) { return r.record.metrics.at(key).values.back(); }
-
   std::vector<ViewPair> pairs_;
 };
 

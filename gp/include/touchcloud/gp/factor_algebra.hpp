@@ -21,6 +21,9 @@ void solve_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l,
 // b <- b L^-T (the rows of b solved against L: b's transpose gets L^-1 b^T).
 void solve_right_lower_transposed_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b);
 
+// b <- L b.
+void multiply_lower_in_place(const Eigen::Ref<const Eigen::MatrixXd>& l, Eigen::Ref<Eigen::MatrixXd> b);
+
 // Whether b <- b L^-T is faster done as its transpose, L^-1 b^T, with a
 // left-side solve: OpenBLAS 0.3.21's left-side dtrsm beats the right-side
 // one with its AVX-512 kernels (SkylakeX, Cooperlake: 4.4 against 6.3 ms

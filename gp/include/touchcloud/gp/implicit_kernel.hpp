@@ -33,6 +33,15 @@ class ImplicitKernel {
 
   // K(P, Q) for points as rows: out is P.rows() x Q.rows().
   Eigen::MatrixXd cross(const Eigen::Ref<const Eigen::MatrixX3d>& p, const Eigen::Ref<const Eigen::MatrixX3d>& q) const;
+  // The same vectorised over P's points (Eigen's array code, Matern's exp
+  // through exp_in_place): equal to cross() to rounding, not bit for bit.
+  Eigen::MatrixXd cross_vectorised(const Eigen::Ref<const Eigen::MatrixX3d>& p,
+                                   const Eigen::Ref<const Eigen::MatrixX3d>& q) const;
+  // sum_i w_i k(|p_i - q_j|) for each row q_j of Q: Matern 5/2 in one fused
+  // pass where the CPU allows (matern_sums.hpp), else columns of
+  // cross_vectorised.
+  Eigen::VectorXd weighted_sums(const Eigen::Ref<const Eigen::MatrixX3d>& p, const Eigen::VectorXd& w,
+                                const Eigen::Ref<const Eigen::MatrixX3d>& q) const;
 
  private:
   ImplicitKernelKind kind_;

@@ -24,4 +24,11 @@ bool matern52_unit_sums(const double* px, const double* py, const double* w, Eig
                         const double* qy, Eigen::Index first, Eigen::Index last, double five_over_l2, double* out,
                         SimdPath path = fastest_simd_path());
 
+// The same in 3-D, for points p and queries q as rows: out[j] = sum_p w_p
+// (1 + s + s^2/3) e^-s with s = sqrt(five_over_l2) |p - q_j|, through AVX2 and
+// FMA (AVX-512 CPUs too). Returns false, writing nothing, where they do not
+// run or the build has no SLEEF.
+bool matern52_unit_sums_3d(const Eigen::Ref<const Eigen::MatrixX3d>& p, const Eigen::VectorXd& w,
+                           const Eigen::Ref<const Eigen::MatrixX3d>& q, double five_over_l2, double* out);
+
 }  // namespace touchcloud::gp

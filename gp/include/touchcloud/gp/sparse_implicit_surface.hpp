@@ -66,6 +66,7 @@ class SparseImplicitSurface {
   bool extend_inducing(Eigen::Index from);                   // rows [from, m_) of u_; false: rebuild
   void add_columns(Eigen::Index from);                       // training rows [from, n)
   void solve_weights();
+  Eigen::VectorXd residuals(Eigen::Index first, Eigen::Index count) const;  // signed distance minus prior
   void require_touches() const;
 
   ImplicitSurfaceOptions options_;
@@ -87,6 +88,7 @@ class SparseImplicitSurface {
   Eigen::VectorXd az_;        // A r / s (r: signed distance minus prior)
   Eigen::MatrixXd l_b_;       // chol(B)
   Eigen::VectorXd weights_;   // w above
+  Eigen::MatrixXd variance_form_;  // lower: K_uu^-1 - (L_uu B L_uu^T)^-1, strict part doubled
 };
 
 }  // namespace touchcloud::gp

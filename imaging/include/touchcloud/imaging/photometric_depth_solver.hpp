@@ -15,7 +15,9 @@
 // so a contact that runs off the image keeps its height.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -37,7 +39,7 @@ struct DepthOptions {
 struct DepthResult {
   cv::Mat height_mm;     // CV_32FC1
   cv::Mat contact_mask;  // CV_8UC1
-  cv::Mat gx, gy;        // CV_64FC1 pixel-centred gradients (dH/dx, dH/dy), for inspection
+  cv::Mat gx, gy;        // CV_64FC1 pixel-centred gradients (dH/dx, dH/dy), for inspection: the solver's, until its next solve
   long flat_pixels = 0;  // pixels taken as flat (border free: the height's zero)
 };
 
@@ -53,7 +55,9 @@ class PhotometricDepthSolver {
   DepthOptions options_;
   std::unique_ptr<DstPoisson> zero_border_;
   std::unique_ptr<DctPoisson> free_border_;
+  std::vector<std::array<int, 3>> exponents_;  // the polynomial's terms: powers of r, g, b
   cv::Mat p_, q_;  // staggered gradients, reused
+  cv::Mat gx_, gy_, difference_, height_;  // scratch of one frame, reused
 };
 
 }  // namespace touchcloud::imaging

@@ -15,6 +15,12 @@
 #include <optional>
 #include <string>
 
+#include "touchcloud/plugin_kit/camera/capture.hpp"
+
+namespace touchcloud {
+class RunContext;
+}
+
 namespace touchcloud::camera {
 
 struct CameraPreset {
@@ -27,5 +33,10 @@ struct CameraPreset {
 // InputError naming the file and key for a missing section, an unknown key
 // or a malformed value.
 CameraPreset read_camera_preset(const std::filesystem::path& file);
+
+// What `settings` leaves unset (size, fps, pixel_format, crop, resize) taken
+// from the sensor file's camera: section; each value taken is recorded as
+// used when `ctx` is given. InputError as read_camera_preset.
+void fill_from_preset(CaptureSettings& settings, const std::filesystem::path& file, RunContext* ctx);
 
 }  // namespace touchcloud::camera

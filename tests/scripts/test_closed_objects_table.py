@@ -1,0 +1,50 @@
+"""benchmarks/closed_objects/make_closed_objects_table.py on one shape, one
+seed and two touches: every file it promises, one summary row per method,
+a curve row per touch, and bad arguments refused before anything runs."""
+import csv
+import math
+import os
+import pathlib
+import subprocess
+import sys
+
+SOURCE = pathlib.Path(os.environ.get("TOUCHCLOUD_SOURCE_DIR", pathlib.Path(__file__).parents[2]))
+CLI = pathlib.Path(os.environ.get("TOUCHCLOUD_CLI", SOURCE / "build/bin/touchcloud"))
+SCRIPT = SOURCE / "benchmarks/closed_objects/make_closed_objects_table.py"
+
+
+def table(out, *args):
+    return subprocess.run([sys.executable, str(SCRIPT), "--out", str(out), "--touchcloud", str(CLI), *args],
+                          capture_output=True, text=True, timeout=600, cwd=SOURCE)
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_one_shape_one_seed_two_touches(tmp_path):
+    r = table(tmp_path, "--shapes", "pebble", "--seeds", "1", "--touches", "2")
+    assert r.returncode == 0, r.stderr
+    summary = rows(tmp_path / "results.csv")
+    assert [(s["shape"], s["method"].split(" (")[0]) for s in summary] == [("pebble", "height field"),
+                                                                          ("pebble", "implicit surface")]
+    for s in summary:
+        assert s["seeds"] == "1" and float(s["touches"]) == 2
+        for name in ("chamfer_est_to_gt", "p95_est_to_gt", "hausdorff", "fscore", "recall"):
+            assert math.isfinite(float(s[name])), (name, s)
+            assert float(s[name + "_sd"]) == 0.0  # one seed
+        assert float(s["chamfer_est_to_gt"]) <= float(s["hausdorff"]) and float(s["p95_est_to_gt"]) <= float(s["hausdorff"])
+    assert len(rows(tmp_path / "runs.csv")) == 2
+    curves = rows(tmp_path / "curves.csv")
+    assert [(c["method"].split(" (")[0], c["touch"]) for c in curves] == [
+        ("height field", "1"), ("height field", "2"), ("implicit surface", "1"), ("implicit surface", "2")]
+    assert "± 0.000" in (tmp_path / "results.md").read_text()
+
+
+def test_bad_arguments_are_refused_before_any_run(tmp_path):
+    for args, says in ((["--shapes", "cube"], "no shape cube"), (["--seeds", "one"], "--seeds 'one'"),
+                       (["--touches", "0"], "--touches")):
+        r = table(tmp_path / "out", *args)
+        assert r.returncode == 2 and says in r.stderr, (args, r.stderr)
+    assert not (tmp_path / "out").exists()

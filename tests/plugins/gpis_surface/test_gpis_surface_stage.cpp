@@ -39,6 +39,14 @@ TactileCloudPtr tactile_for(const gp::ImplicitTouch& t) {
   return tactile;
 }
 
+// Feeds each touch to the stage; the cloud after the last one.
+CloudConstPtr touch_all(test::StageHarness& h, const std::vector<gp::ImplicitTouch>& touches) {
+  CloudConstPtr out;
+  for (const auto& t : touches)
+    out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
+  return out;
+}
+
 // The largest distance of a point of `cloud` from the sphere's surface.
 double farthest_off(const PointCloud& cloud, const test::SphereObject& sphere) {
   double worst = 0;
@@ -63,9 +71,7 @@ TEST_F(GpisSurfaceStage, CloudOnTheSphereAndMeshWithVariance) {
                        "fit", settings);
   h.configure();
   const test::SphereObject sphere;
-  CloudConstPtr out;
-  for (const auto& t : sphere.touches(40))
-    out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
+  const CloudConstPtr out = touch_all(h, sphere.touches(40));
   h.finish();
   ASSERT_EQ(out->size(), 2000u);
   const double worst = farthest_off(*out, sphere);
@@ -108,9 +114,7 @@ TEST_F(GpisSurfaceStage, SparseFormOnTheSphere) {
                                         {"reselect_growth", 1.0}});
   h.configure();
   const test::SphereObject sphere;
-  CloudConstPtr out;
-  for (const auto& t : sphere.touches(40))
-    out = h.process_one<CloudConstPtr>({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, "cloud");
+  const CloudConstPtr out = touch_all(h, sphere.touches(40));
   h.finish();
   const double worst = farthest_off(*out, sphere);
   EXPECT_LT(worst, 0.5);

@@ -71,7 +71,7 @@ Eigen::Index ExactGp::capacity_for(Eigen::Index points) const {
 void ExactGp::fit(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm) {
   check_training(xy_mm, z_mm, "training point");
   const bool any = xy_mm.rows() > 0;
-  fit(xy_mm, z_mm, any ? centring_of(xy_mm, z_mm) : Centring{});
+  fit(xy_mm, z_mm, any ? centring_of(xy_mm, z_mm, options_.prior_mean) : Centring{});
   centring_fixed_ = any;
 }
 

@@ -68,6 +68,11 @@ void BoundsRules::validate() const {
   }
   check("signal_variance_low", signal_variance_low, "signal_variance_high", signal_variance_high);
   check("noise_variance_low", noise_variance_low, "noise_variance_high", noise_variance_high);
+  if (lengthscale_max_mm && !(*lengthscale_max_mm > 0 && std::isfinite(*lengthscale_max_mm))) {
+    std::ostringstream msg;
+    msg << "GP hyperparameter bounds: lengthscale_max_mm (" << *lengthscale_max_mm << ") must be finite and > 0";
+    throw InputError(msg.str());
+  }
   if (!(noise_sd_max > 0)) {
     std::ostringstream msg;
     msg << "GP hyperparameter bounds: noise_sd_max (" << noise_sd_max << ") must be > 0 (infinite: no cap)";
@@ -91,7 +96,9 @@ HyperparameterBounds bounds_from_scales(const DataScales& s, const BoundsRules& 
   rules.validate();
   HyperparameterBounds b;
   b.lower.lengthscale_mm = rules.lengthscale_spacing_fraction * s.spacing_mm;
-  b.upper.lengthscale_mm = std::max(b.lower.lengthscale_mm, rules.lengthscale_extent_multiple * s.extent_mm);
+  b.upper.lengthscale_mm = rules.lengthscale_extent_multiple * s.extent_mm;
+  if (rules.lengthscale_max_mm) b.upper.lengthscale_mm = std::min(b.upper.lengthscale_mm, *rules.lengthscale_max_mm);
+  b.upper.lengthscale_mm = std::max(b.lower.lengthscale_mm, b.upper.lengthscale_mm);
   b.lower.signal_variance_mm2 = rules.signal_variance_low * s.z_variance_mm2;
   b.upper.signal_variance_mm2 = rules.signal_variance_high * s.z_variance_mm2;
   b.lower.noise_variance_mm2 =

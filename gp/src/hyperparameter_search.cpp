@@ -169,8 +169,8 @@ struct ProfileBox {
 class Profile {
  public:
   Profile(KernelKind kind, const Eigen::MatrixX2d& xy, const Eigen::VectorXd& z, const HyperparameterBounds& bounds,
-          const JitterSchedule& jitter)
-      : likelihood_(kind, xy, z, jitter), bounds_(bounds) {}
+          const JitterSchedule& jitter, PriorMean level)
+      : likelihood_(kind, xy, z, jitter, level), bounds_(bounds) {}
 
   BoxObjective objective() {
     return [this](const Eigen::VectorXd& x, double& value, Eigen::VectorXd* gradient) {
@@ -245,7 +245,7 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
   const ProfileBox box(bounds);
   const LbfgsSettings lbfgs = lbfgs_settings(options);
 
-  Profile full(options.kernel, xy_mm, z_mm, bounds, options.jitter);
+  Profile full(options.kernel, xy_mm, z_mm, bounds, options.jitter, options.prior_mean);
   const BoxObjective f = full.objective();
   const auto at_full = [&full](const Eigen::VectorXd& x) { return full.at(x); };
   auto fail = [&](const std::string& what) {
@@ -304,7 +304,7 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
   Eigen::Index level = m;
   {
     const auto [sub_xy, sub_z] = subset_of_runs(xy_mm, z_mm, m, kSubsetRuns);
-    Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter);
+    Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter, options.prior_mean);
     const BoxObjective fs = sub.objective();
     Restarts restarts =
         lbfgs_restarts(fs, box.lo, box.hi, start_points_in_box, lbfgs, [&sub](const Eigen::VectorXd& p) { return sub.at(p); });
@@ -314,7 +314,7 @@ SearchResult select_hyperparameters(const Eigen::MatrixX2d& xy_mm, const Eigen::
   }
   for (Eigen::Index next = 2 * m; x.size() > 0 && 2 * next <= n; next *= 2) {
     const auto [sub_xy, sub_z] = subset_of_runs(xy_mm, z_mm, next, kSubsetRuns);
-    Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter);
+    Profile sub(options.kernel, sub_xy, sub_z, bounds, options.jitter, options.prior_mean);
     const BoxObjective fs = sub.objective();
     BoxRun run;
     if (hessian.size() > 0) {

@@ -20,11 +20,11 @@ double half_n_log_2pi(Eigen::Index n) { return 0.5 * static_cast<double>(n) * st
 }  // namespace
 
 MarginalLikelihood::MarginalLikelihood(KernelKind kind, const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm,
-                                       JitterSchedule jitter)
+                                       JitterSchedule jitter, PriorMean level)
     : kind_(kind), jitter_(jitter) {
   check_training(xy_mm, z_mm, "training point");
   jitter_.validate();
-  const Centring c = centring_of(xy_mm, z_mm);
+  const Centring c = centring_of(xy_mm, z_mm, level);
   CentredXy p = centre(xy_mm, c);
   x_ = std::move(p.x);
   y_ = std::move(p.y);

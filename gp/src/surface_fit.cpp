@@ -75,6 +75,8 @@ SelectionSummary SurfaceFit::select() {
   search.screening_points = o.screening_points;
   search.bounds.noise_sd_max = o.max_noise_mm;
   search.bounds.noise_sd_min = o.min_noise_mm;
+  search.bounds.lengthscale_max_mm = o.max_lengthscale_mm;
+  search.prior_mean = o.prior_mean;
   search.stop_gain = kSelectionStopGain;
   if (selected_at_ > 0) {
     search.start_hyperparameters = {last_};
@@ -109,7 +111,9 @@ std::optional<std::array<double, 2>> SurfaceFit::data_z_range() const {
 }
 
 void SurfaceFit::fit_exact(const Hyperparameters& h) {
-  auto model = std::make_shared<ExactGp>(summary_.given.kernel, h);
+  ExactGpOptions options;
+  options.prior_mean = summary_.given.prior_mean;
+  auto model = std::make_shared<ExactGp>(summary_.given.kernel, h, options);
   model->fit(xy_, z_);
   gp_ = model;
 }

@@ -45,6 +45,13 @@ std::optional<Problem> SurfaceFitOptions::problem() const {
   if (!(min_noise_mm < max_noise_mm))
     return Problem{"min_noise_mm", "value " + number_text(min_noise_mm) + " must be below max_noise_mm (" +
                                        number_text(max_noise_mm) + " mm)"};
+  if (prior_mean != PriorMean::mean && prior_mean != PriorMean::median)
+    return Problem{"prior_mean", "value " + std::to_string(static_cast<int>(prior_mean)) + " is not a level: must be mean or median"};
+  if (prior_mean == PriorMean::median && method != FitMethod::exact)
+    return Problem{"prior_mean", "value median needs method exact (the sparse fit centres on the mean)"};
+  if (max_lengthscale_mm) {
+    if (auto p = bounded_below("max_lengthscale_mm", *max_lengthscale_mm, 0, true, "mm")) return p;
+  }
   if (blas_threads) {
     if (auto p = bounded_below("blas_threads", *blas_threads, 1, false, "threads")) return p;
     if (!factor_algebra_threads_settable())

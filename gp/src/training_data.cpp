@@ -1,20 +1,29 @@
 #include "touchcloud/gp/training_data.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <sstream>
 
 #include "touchcloud/error.hpp"
 
 namespace touchcloud::gp {
 
-Centring centring_of(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm) {
+Centring centring_of(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm, PriorMean level) {
   Centring c;
   if (xy_mm.rows() == 0) return c;
   // The box middle of exactly representable coordinates is exact, so a shift
   // of the whole data set shifts the centre by exactly the same amount.
   c.x_mm = 0.5 * (xy_mm.col(0).minCoeff() + xy_mm.col(0).maxCoeff());
   c.y_mm = 0.5 * (xy_mm.col(1).minCoeff() + xy_mm.col(1).maxCoeff());
-  c.z_mm = z_mm.mean();
+  if (level == PriorMean::mean) {
+    c.z_mm = z_mm.mean();
+    return c;
+  }
+  std::vector<double> z(z_mm.begin(), z_mm.end());
+  const auto middle = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
+  std::nth_element(z.begin(), middle, z.end());
+  c.z_mm = *middle;  // the upper median: a value of the data
   return c;
 }
 

@@ -46,6 +46,13 @@ class GpSurface final : public Stage {
         .doc("smallest noise standard deviation model selection may choose (0: no floor): a sensor's "
              "repeatability between touches; keeps a rough kernel from passing exactly through neighbouring points "
              "of two touches that disagree, and swinging far off between them");
+    p.add("prior_mean", options_.prior_mean, gp::PriorMean::mean, {{"mean", gp::PriorMean::mean}, {"median", gp::PriorMean::median}})
+        .doc("the level the surface returns to far from the touches: the touched points' mean, or their median "
+             "(method exact; a relief on a plate: the plate, where most touches land, so ground beside a tall part "
+             "that no touch reached is not drawn at the mean height)");
+    p.add("max_lengthscale_mm", options_.max_lengthscale_mm).unit("mm").above(0.0)
+        .doc("largest lengthscale model selection may choose; not set: no cap (a long lengthscale carries a steep "
+             "wall's slope past its foot, into ground no touch reached)");
     p.add("blas_threads", options_.blas_threads).at_least(1).unit("threads").needs("OpenBLAS", gp::factor_algebra_threads_settable())
         .doc("threads of the factorisations and solves (OpenBLAS: one count for the whole process); not set: "
              "OpenBLAS's own, a thread per core; 1 leaves the other cores to background stages");

@@ -52,6 +52,10 @@ TEST(GpSurfaceFitOptions, EachRuleRefusesABadValueNamingTheFieldAndTheValue) {
       {"min_noise_mm", "1", [](SurfaceFitOptions& o) { o.min_noise_mm = 1.0; }},
       {"min_noise_mm", "0.5", [](SurfaceFitOptions& o) { o.min_noise_mm = 0.5, o.max_noise_mm = 0.25; }},
       {"blas_threads", "0", [](SurfaceFitOptions& o) { o.blas_threads = 0; }},
+      {"prior_mean", "7", [](SurfaceFitOptions& o) { o.prior_mean = static_cast<PriorMean>(7); }},
+      {"prior_mean", "median", [](SurfaceFitOptions& o) { o.prior_mean = PriorMean::median, o.method = FitMethod::sparse; }},
+      {"max_lengthscale_mm", "0", [](SurfaceFitOptions& o) { o.max_lengthscale_mm = 0.0; }},
+      {"max_lengthscale_mm", "inf", [inf](SurfaceFitOptions& o) { o.max_lengthscale_mm = inf; }},
   };
   for (const BadValue& c : cases) {
     SCOPED_TRACE(c.field + " = " + c.value);

@@ -33,6 +33,9 @@ namespace touchcloud::gp {
 
 struct ExactGpOptions {
   JitterSchedule jitter;
+  // The centring's z, the level the mean returns to far from the data, when
+  // fit() takes it from the data.
+  PriorMean prior_mean = PriorMean::mean;
   // The variance's cross-covariance blocks hold at most this many doubles
   // (n x block queries).
   Eigen::Index query_block_doubles = Eigen::Index{1} << 21;  // 16 MB

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -36,6 +37,10 @@ struct BoundsRules {
   // surface that passes through two points 0.2 mm apart and 2 mm apart in z,
   // and swings by centimetres between them. 0: no floor.
   double noise_sd_min = 0.0;
+  // An absolute cap on the lengthscale, in the data's units: a long one
+  // carries a steep wall's slope far past its foot, into ground no touch
+  // reached. Not set: only the extent rule.
+  std::optional<double> lengthscale_max_mm;
   void validate() const;  // InputError naming the field
 };
 

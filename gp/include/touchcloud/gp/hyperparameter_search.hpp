@@ -39,11 +39,13 @@
 #include "touchcloud/gp/hyperparameter_bounds.hpp"
 #include "touchcloud/gp/hyperparameters.hpp"
 #include "touchcloud/gp/jittered_cholesky.hpp"
+#include "touchcloud/gp/training_data.hpp"
 
 namespace touchcloud::gp {
 
 struct SearchOptions {
   KernelKind kernel = KernelKind::rbf;
+  PriorMean prior_mean = PriorMean::mean;  // the z the likelihood centres on
   BoundsRules bounds;
   // Empty: three starts spread geometrically from 3 x spacing to the extent,
   // with signal variance var(z) and noise var(z) / 100.

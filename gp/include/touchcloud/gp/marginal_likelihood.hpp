@@ -20,6 +20,7 @@
 #include "touchcloud/gp/hyperparameter_bounds.hpp"
 #include "touchcloud/gp/hyperparameters.hpp"
 #include "touchcloud/gp/jittered_cholesky.hpp"
+#include "touchcloud/gp/training_data.hpp"
 
 namespace touchcloud::gp {
 
@@ -39,9 +40,10 @@ struct ProfiledEvaluation {
 
 class MarginalLikelihood {
  public:
-  // Checks and centres the data (InputError on non-finite values).
+  // Checks and centres the data (InputError on non-finite values); z about
+  // the prior mean `level`.
   MarginalLikelihood(KernelKind kind, const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm,
-                     JitterSchedule jitter = {});
+                     JitterSchedule jitter = {}, PriorMean level = PriorMean::mean);
 
   // RunError when A cannot be factorised within the jitter schedule.
   LmlEvaluation evaluate(const Hyperparameters& h, bool with_gradient);

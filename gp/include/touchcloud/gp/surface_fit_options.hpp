@@ -9,6 +9,7 @@
 #include <string>
 
 #include "touchcloud/gp/hyperparameters.hpp"
+#include "touchcloud/gp/training_data.hpp"
 
 namespace touchcloud::gp {
 
@@ -39,6 +40,12 @@ struct SurfaceFitOptions {
   // [min_noise_mm, max_noise_mm] (0: no floor).
   double max_noise_mm = 1.0;
   double min_noise_mm = 0.0;
+  // The surface far from the touches returns to this level (method exact):
+  // the data's mean, or its median (training_data.hpp).
+  PriorMean prior_mean = PriorMean::mean;
+  // Selection chooses no lengthscale above this (bounds: lengthscale_max_mm);
+  // not set: no cap beyond the extent rule.
+  std::optional<double> max_lengthscale_mm;
   // Threads of the factorisations and solves (OpenBLAS keeps one count for
   // the whole process); not set: OpenBLAS's own. Needs OpenBLAS.
   std::optional<int> blas_threads;

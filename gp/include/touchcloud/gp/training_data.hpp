@@ -9,11 +9,16 @@
 
 namespace touchcloud::gp {
 
-// Offsets subtracted from x, y (middle of the bounding box) and z (mean).
+// Offsets subtracted from x, y (middle of the bounding box) and z (the GP's
+// constant prior mean, which the surface returns to far from its data).
 struct Centring {
   double x_mm = 0.0, y_mm = 0.0, z_mm = 0.0;
 };
-Centring centring_of(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm);
+// The z offset: the data's mean, or its median (a relief on a plate: the
+// level most touches land on, so an unreached valley beside a tall part
+// returns to the plate instead of hanging at the mean height).
+enum class PriorMean { mean, median };
+Centring centring_of(const Eigen::MatrixX2d& xy_mm, const Eigen::VectorXd& z_mm, PriorMean level = PriorMean::mean);
 
 // InputError unless every coordinate is finite; `what` names the point set
 // ("training point", "query point") in the message.

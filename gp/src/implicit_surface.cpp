@@ -132,9 +132,27 @@ void ImplicitSurfaceOptions::validate() const {
   jitter.validate();
 }
 
-ImplicitSurface::ImplicitSurface(ImplicitSurfaceOptions options) : options_(std::move(options)) {
+ImplicitTouches::ImplicitTouches(ImplicitSurfaceOptions options) : options_(std::move(options)) {
   options_.validate();
 }
+
+bool ImplicitTouches::selects_again() const {
+  const bool first = selected_at_ == 0;
+  const bool grown = static_cast<double>(data_.n) >= (1 + options_.reselect_growth) * static_cast<double>(selected_at_);
+  const bool covers = options_.kernel != ImplicitKernelKind::thin_plate || data_.diameter_mm() <= h_.lengthscale_mm;
+  return first || grown || !covers;
+}
+
+double ImplicitTouches::select_on_touches(Eigen::Index& subset_size) {
+  centre_ = data_.contacts.colwise().mean().transpose();
+  radius_ = (data_.contacts.rowwise() - centre_.transpose()).rowwise().norm().mean();
+  const SearchResult result = select_implicit_on_training(data_, centre_, radius_, options_, subset_size);
+  h_ = result.hyperparameters;
+  selected_at_ = data_.n;
+  return result.lml;
+}
+
+ImplicitSurface::ImplicitSurface(ImplicitSurfaceOptions options) : ImplicitTouches(std::move(options)) {}
 
 ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
   const std::string where = "implicit surface, touch " + std::to_string(touches_ + 1);
@@ -148,13 +166,10 @@ ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
   append_implicit_training(touch, normals, options_, data_);
   ++touches_;
   update.points_added = data_.n - from;
-  const bool first = selected_at_ == 0;
-  const bool grown = static_cast<double>(data_.n) >= (1 + options_.reselect_growth) * static_cast<double>(selected_at_);
-  if (first || grown || !scale_covers_data()) {
-    const ImplicitUpdate s = select();
-    update.path = s.path;
-    update.lml = s.lml;
-    update.selection_points = s.selection_points;
+  if (selects_again()) {
+    update.lml = select_on_touches(update.selection_points);
+    update.path = ImplicitUpdatePath::selected;
+    refactorise();
   } else if (extend_factor(from)) {
     update.path = ImplicitUpdatePath::bordered;
   } else {
@@ -164,29 +179,6 @@ ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
   solve_weights();
   update.training_points = data_.n;
   update.jitter_mm2 = jitter_mm2_;
-  return update;
-}
-
-bool ImplicitSurface::scale_covers_data() const {
-  return options_.kernel != ImplicitKernelKind::thin_plate || data_.diameter_mm() <= h_.lengthscale_mm;
-}
-
-void ImplicitSurface::set_prior() {
-  centre_ = data_.contacts.colwise().mean().transpose();
-  radius_ = (data_.contacts.rowwise() - centre_.transpose()).rowwise().norm().mean();
-}
-
-ImplicitUpdate ImplicitSurface::select() {
-  set_prior();
-  Eigen::Index m = 0;
-  const SearchResult result = select_implicit_on_training(data_, centre_, radius_, options_, m);
-  h_ = result.hyperparameters;
-  selected_at_ = data_.n;
-  refactorise();
-  ImplicitUpdate update;
-  update.path = ImplicitUpdatePath::selected;
-  update.lml = result.lml;
-  update.selection_points = m;
   return update;
 }
 

@@ -6,7 +6,6 @@
 
 #include <Eigen/Cholesky>
 
-#include "implicit_selection.hpp"
 #include "touchcloud/gp/cholesky_inverse.hpp"
 #include "touchcloud/gp/factor_algebra.hpp"
 #include "latent_variance.hpp"
@@ -49,8 +48,7 @@ void SparseImplicitOptions::validate() const {
 }
 
 SparseImplicitSurface::SparseImplicitSurface(ImplicitSurfaceOptions options, SparseImplicitOptions sparse)
-    : options_(std::move(options)), sparse_(sparse) {
-  options_.validate();
+    : ImplicitTouches(std::move(options)), sparse_(sparse) {
   sparse_.validate();
 }
 
@@ -63,16 +61,8 @@ ImplicitUpdate SparseImplicitSurface::add(const ImplicitTouch& touch) {
   ++touches_;
   update.points_added = data_.n - from;
   add_sites(from, touch.points_mm.rows());
-  const bool first = selected_at_ == 0;
-  const bool grown = static_cast<double>(data_.n) >= (1 + options_.reselect_growth) * static_cast<double>(selected_at_);
-  const bool covers = options_.kernel != ImplicitKernelKind::thin_plate || data_.diameter_mm() <= h_.lengthscale_mm;
-  if (first || grown || !covers) {
-    centre_ = data_.contacts.colwise().mean().transpose();
-    radius_ = (data_.contacts.rowwise() - centre_.transpose()).rowwise().norm().mean();
-    const SearchResult result = select_implicit_on_training(data_, centre_, radius_, options_, update.selection_points);
-    h_ = result.hyperparameters;
-    selected_at_ = data_.n;
-    update.lml = result.lml;
+  if (selects_again()) {
+    update.lml = select_on_touches(update.selection_points);
     update.path = ImplicitUpdatePath::selected;
     rebuild();
   } else if (extend_inducing(inducing_from)) {

@@ -89,7 +89,41 @@ Eigen::Index implicit_rows_of(Eigen::Index contacts, const ImplicitSurfaceOption
 void append_implicit_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals,
                               const ImplicitSurfaceOptions& options, ImplicitTraining& training);
 
-class ImplicitSurface {
+// What both forms keep of their touches and do alike: the options, the
+// training set, the prior sphere, and the hyperparameters with the training
+// size they were selected at.
+class ImplicitTouches {
+ public:
+  Eigen::Index training_size() const { return data_.n; }
+  const Eigen::MatrixX3d& contact_points() const { return data_.contacts; }
+  std::size_t touches() const { return touches_; }
+  const Hyperparameters& hyperparameters() const { return h_; }
+  const ImplicitSurfaceOptions& options() const { return options_; }
+  Eigen::Vector3d prior_centre_mm() const { return centre_; }
+  double prior_radius_mm() const { return radius_; }
+
+ protected:
+  explicit ImplicitTouches(ImplicitSurfaceOptions options);  // InputError on invalid options
+  double prior(const Eigen::Vector3d& p) const { return (p - centre_).norm() - radius_; }
+  // Whether the touch just appended selects hyperparameters again: the
+  // first, the data grown by reselect_growth since the last selection, or
+  // (thin_plate) R no longer spanning the data, as its kernel asks.
+  bool selects_again() const;
+  // The prior sphere from the contacts, then the hyperparameters (h_,
+  // selected_at_) on a subset of the training points of `subset_size`
+  // points; returns the subset's log marginal likelihood.
+  double select_on_touches(Eigen::Index& subset_size);
+
+  ImplicitSurfaceOptions options_;
+  Hyperparameters h_;
+  ImplicitTraining data_;
+  std::size_t touches_ = 0;
+  Eigen::Index selected_at_ = 0;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
+  double radius_ = 0;
+};
+
+class ImplicitSurface : public ImplicitTouches {
  public:
   explicit ImplicitSurface(ImplicitSurfaceOptions options = {});  // InputError on invalid options
 
@@ -108,33 +142,12 @@ class ImplicitSurface {
   Eigen::VectorXd mean(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, int threads = 1) const;
   Eigen::VectorXd variance(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, std::size_t* clamped = nullptr) const;
 
-  Eigen::Index training_size() const { return data_.n; }
-  const Eigen::MatrixX3d& contact_points() const { return data_.contacts; }
-  std::size_t touches() const { return touches_; }
-  const Hyperparameters& hyperparameters() const { return h_; }
-  const ImplicitSurfaceOptions& options() const { return options_; }
-  Eigen::Vector3d prior_centre_mm() const { return centre_; }
-  double prior_radius_mm() const { return radius_; }
-
  private:
-  double prior(const Eigen::Vector3d& p) const { return (p - centre_).norm() - radius_; }
-  void set_prior();
-  // thin_plate: whether R still spans the data (its kernel is a covariance
-  // only up to R); a touch that reaches farther selects again.
-  bool scale_covers_data() const;
-  ImplicitUpdate select();
   void refactorise();           // L from all training points at h_, with the jitter schedule
   bool extend_factor(Eigen::Index from);  // bordered update for rows [from, n_); false: not positive
   void solve_weights();
   void require_touches() const;
 
-  ImplicitSurfaceOptions options_;
-  Hyperparameters h_;
-  ImplicitTraining data_;
-  std::size_t touches_ = 0;
-  Eigen::Index selected_at_ = 0;
-  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
-  double radius_ = 0;
   Eigen::MatrixXd factor_;  // lower n_ x n_ corner: L L^T = K + (noise + jitter) I
   double jitter_mm2_ = 0;
   Eigen::VectorXd v_;       // L^-1 (f - prior)

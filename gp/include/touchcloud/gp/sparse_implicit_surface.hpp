@@ -36,7 +36,7 @@ struct SparseImplicitOptions {
   void validate() const;             // InputError naming the field
 };
 
-class SparseImplicitSurface {
+class SparseImplicitSurface : public ImplicitTouches {
  public:
   // options.max_training_points is not used here. InputError on invalid options.
   SparseImplicitSurface(ImplicitSurfaceOptions options, SparseImplicitOptions sparse);
@@ -52,15 +52,9 @@ class SparseImplicitSurface {
   Eigen::VectorXd mean(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, int threads = 1) const;
   Eigen::VectorXd variance(const Eigen::Ref<const Eigen::MatrixX3d>& query_mm, std::size_t* clamped = nullptr) const;
 
-  Eigen::Index training_size() const { return data_.n; }
   Eigen::Index inducing_size() const { return m_; }
-  const Eigen::MatrixX3d& contact_points() const { return data_.contacts; }
-  std::size_t touches() const { return touches_; }
-  const Hyperparameters& hyperparameters() const { return h_; }
-  const ImplicitSurfaceOptions& options() const { return options_; }
 
  private:
-  double prior(const Eigen::Vector3d& p) const { return (p - centre_).norm() - radius_; }
   void add_sites(Eigen::Index from, Eigen::Index contacts);  // of the touch at rows [from, ...)
   void rebuild();                                            // L_uu, A, B from all points at h_
   bool extend_inducing(Eigen::Index from);                   // rows [from, m_) of u_; false: rebuild
@@ -69,14 +63,7 @@ class SparseImplicitSurface {
   Eigen::VectorXd residuals(Eigen::Index first, Eigen::Index count) const;  // signed distance minus prior
   void require_touches() const;
 
-  ImplicitSurfaceOptions options_;
   SparseImplicitOptions sparse_;
-  Hyperparameters h_;
-  ImplicitTraining data_;
-  std::size_t touches_ = 0;
-  Eigen::Index selected_at_ = 0;
-  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
-  double radius_ = 0;
   std::vector<Eigen::Vector3d> sites_;
   Eigen::MatrixX3d u_{0, 3};  // inducing points, rows [0, m_)
   Eigen::Index m_ = 0;

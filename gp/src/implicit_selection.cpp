@@ -89,7 +89,8 @@ SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& p, const Ei
 }
 
 SearchResult select_implicit_on_training(const ImplicitTraining& data, const Eigen::Vector3d& centre, double radius,
-                                         const ImplicitSurfaceOptions& options, Eigen::Index& subset_size) {
+                                         const ImplicitSurfaceOptions& options, double scale_floor,
+                                         Eigen::Index& subset_size) {
   const Eigen::Index m = std::min(data.n, options.selection_points);
   Eigen::MatrixX3d p(m, 3);
   Eigen::VectorXd r(m);
@@ -99,7 +100,7 @@ SearchResult select_implicit_on_training(const ImplicitTraining& data, const Eig
     r[j] = data.f[i] - ((data.x.row(i).transpose() - centre).norm() - radius);
   }
   subset_size = m;
-  return select_implicit_hyperparameters(p, r, data.diameter_mm(), options);
+  return select_implicit_hyperparameters(p, r, scale_floor * data.diameter_mm(), options);
 }
 
 }  // namespace touchcloud::gp

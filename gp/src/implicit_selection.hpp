@@ -21,7 +21,10 @@ SearchResult select_implicit_hyperparameters(const Eigen::MatrixX3d& points_mm, 
 // The same on an even stride of at most options.selection_points of the
 // training points (contacts and signed points of every touch), residuals
 // against the prior sphere (centre, radius); `subset_size` set to its size.
+// `scale_floor`: the data's diameter counts this many times (thin_plate's R
+// at least that much).
 SearchResult select_implicit_on_training(const ImplicitTraining& data, const Eigen::Vector3d& centre_mm, double radius_mm,
-                                         const ImplicitSurfaceOptions& options, Eigen::Index& subset_size);
+                                         const ImplicitSurfaceOptions& options, double scale_floor,
+                                         Eigen::Index& subset_size);
 
 }  // namespace touchcloud::gp

@@ -139,14 +139,21 @@ ImplicitTouches::ImplicitTouches(ImplicitSurfaceOptions options) : options_(std:
 bool ImplicitTouches::selects_again() const {
   const bool first = selected_at_ == 0;
   const bool grown = static_cast<double>(data_.n) >= (1 + options_.reselect_growth) * static_cast<double>(selected_at_);
-  const bool covers = options_.kernel != ImplicitKernelKind::thin_plate || data_.diameter_mm() <= h_.lengthscale_mm;
+  const bool covers =
+      options_.kernel != ImplicitKernelKind::thin_plate || scale_floor_ * data_.diameter_mm() <= h_.lengthscale_mm;
   return first || grown || !covers;
+}
+
+bool ImplicitTouches::widen_thin_plate() {
+  if (options_.kernel != ImplicitKernelKind::thin_plate || scale_floor_ > 3) return false;
+  scale_floor_ *= 1.5;
+  return true;
 }
 
 double ImplicitTouches::select_on_touches(Eigen::Index& subset_size) {
   centre_ = data_.contacts.colwise().mean().transpose();
   radius_ = (data_.contacts.rowwise() - centre_.transpose()).rowwise().norm().mean();
-  const SearchResult result = select_implicit_on_training(data_, centre_, radius_, options_, subset_size);
+  const SearchResult result = select_implicit_on_training(data_, centre_, radius_, options_, scale_floor_, subset_size);
   h_ = result.hyperparameters;
   selected_at_ = data_.n;
   return result.lml;
@@ -167,19 +174,39 @@ ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
   ++touches_;
   update.points_added = data_.n - from;
   if (selects_again()) {
-    update.lml = select_on_touches(update.selection_points);
-    update.path = ImplicitUpdatePath::selected;
-    refactorise();
+    select_and_factorise(update);
   } else if (extend_factor(from)) {
     update.path = ImplicitUpdatePath::bordered;
   } else {
-    refactorise();
     update.path = ImplicitUpdatePath::refactorised;
+    if (!factorised()) select_and_factorise(update);
   }
   solve_weights();
   update.training_points = data_.n;
   update.jitter_mm2 = jitter_mm2_;
+  update.scale_floor = scale_floor_;
   return update;
+}
+
+bool ImplicitSurface::factorised() {
+  try {
+    refactorise();
+    return true;
+  } catch (const RunError& e) {
+    if (!widen_thin_plate())
+      throw RunError(std::string(e.what()) +
+                     (options_.kernel == ImplicitKernelKind::thin_plate
+                          ? " at every thin-plate R tried (up to 3.4 times the data's diameter): use a Matern kernel"
+                          : ""));
+    return false;
+  }
+}
+
+void ImplicitSurface::select_and_factorise(ImplicitUpdate& update) {
+  do {
+    update.lml = select_on_touches(update.selection_points);
+    update.path = ImplicitUpdatePath::selected;
+  } while (!factorised());
 }
 
 void ImplicitSurface::refactorise() {

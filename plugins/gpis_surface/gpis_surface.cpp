@@ -22,6 +22,7 @@
 // side.
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <variant>
 
 #include "top_surface.hpp"
@@ -63,6 +64,7 @@ class GpisSurface final : public Stage {
   std::int64_t samples_ = 20000;
   std::optional<std::string> mesh_path_;
   std::int64_t threads_ = 0;
+  double scale_floor_ = 1;  // the thin-plate R's floor last reported
   // Shared with the `surface` output until the next touch.
   std::variant<std::shared_ptr<gp::ImplicitSurface>, std::shared_ptr<gp::SparseImplicitSurface>> model_;
   scoring::TriangleMesh mesh_;
@@ -161,6 +163,15 @@ class GpisSurface final : public Stage {
     ctx.metric("signal_variance_mm2", model->hyperparameters().signal_variance_mm2, "mm^2");
     ctx.metric("noise_variance_mm2", model->hyperparameters().noise_variance_mm2, "mm^2");
     ctx.metric("jitter_mm2", update.jitter_mm2, "mm^2");
+    if (update.scale_floor > scale_floor_) {
+      scale_floor_ = update.scale_floor;
+      std::ostringstream text;
+      text << "the thin-plate covariance was not positive definite with R near the touches' diameter (touches "
+              "spread all round the object): R is kept at least " << scale_floor_ << " times their diameter from touch "
+           << model->touches() << " on";
+      ctx.note("thin_plate_scale", text.str());
+      ctx.log("warning: " + text.str());
+    }
 
     const gp::SampleGrid grid = gp::grid_around(model->contact_points(), margin_mm_, static_cast<int>(cells_));
     mesh_ = gp::zero_level_set(grid, model->mean(grid.sample_points(), static_cast<int>(threads_)));

@@ -66,6 +66,9 @@ struct ImplicitUpdate {
   std::optional<double> lml;          // at a selection, on its subset
   Eigen::Index selection_points = 0;  // the subset's size, at a selection
   double jitter_mm2 = 0;              // added to the diagonal to factorise
+  // thin_plate: R's lower bound in diameters of the data, raised from 1 by
+  // 1.5 at a time when the covariance was not positive definite (below).
+  double scale_floor = 1;
   bool normals_estimated = false;     // the touch came without normals
 };
 
@@ -107,8 +110,16 @@ class ImplicitTouches {
   double prior(const Eigen::Vector3d& p) const { return (p - centre_).norm() - radius_; }
   // Whether the touch just appended selects hyperparameters again: the
   // first, the data grown by reselect_growth since the last selection, or
-  // (thin_plate) R no longer spanning the data, as its kernel asks.
+  // (thin_plate) R no longer spanning scale_floor_ times the data, as its
+  // kernel asks.
   bool selects_again() const;
+  // The thin-plate kernel is only conditionally positive definite: with
+  // touches spread all round an object and R near the data's diameter its
+  // covariance can have negative eigenvalues beyond any jitter (a few 1e-3
+  // of its diagonal for points filling a ball), while at 1.5 diameters and
+  // more it is positive definite. Raises scale_floor_ by 1.5 (true), or
+  // false for another kernel or once R's floor has been raised three times.
+  bool widen_thin_plate();
   // The prior sphere from the contacts, then the hyperparameters (h_,
   // selected_at_) on a subset of the training points of `subset_size`
   // points; returns the subset's log marginal likelihood.
@@ -119,6 +130,7 @@ class ImplicitTouches {
   ImplicitTraining data_;
   std::size_t touches_ = 0;
   Eigen::Index selected_at_ = 0;
+  double scale_floor_ = 1;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   double radius_ = 0;
 };
@@ -144,6 +156,10 @@ class ImplicitSurface : public ImplicitTouches {
 
  private:
   void refactorise();           // L from all training points at h_, with the jitter schedule
+  // refactorise(): true, or false with R's floor raised (widen_thin_plate);
+  // the RunError when the floor cannot be raised.
+  bool factorised();
+  void select_and_factorise(ImplicitUpdate& update);  // selects until the covariance factorises
   bool extend_factor(Eigen::Index from);  // bordered update for rows [from, n_); false: not positive
   void solve_weights();
   void require_touches() const;

@@ -28,7 +28,8 @@ import yaml
 class Feed:
     """A capture thread over cv2.VideoCapture into a bounded queue: `block` holds
     capture back, `drop_oldest` loses the oldest frame (counted); `realtime`
-    delivers frame k at k / fps, as a camera."""
+    delivers frame k at k / fps, as a camera, stamped with that time (its
+    latency counts from when it was due)."""
 
     def __init__(self, paths, queue_frames=4, drop_oldest=False, realtime=False, grey=False):
         self.caps = [cv2.VideoCapture(p, cv2.CAP_FFMPEG) for p in paths]
@@ -59,11 +60,12 @@ class Feed:
             views = self._read()
             if views is None:
                 break
-            if self.realtime:
-                delay = start + k / self.fps - time.perf_counter()
+            captured_at = time.perf_counter()
+            if self.realtime:  # captured when due, however late this thread wakes, as touchcloud's feed
+                captured_at = start + k / self.fps
+                delay = captured_at - time.perf_counter()
                 if delay > 0:
                     time.sleep(delay)
-            captured_at = time.perf_counter()
             k += 1
             with self.cond:
                 if len(self.queue) >= self.capacity:

@@ -6,7 +6,8 @@ same run.
 
 The simulator presses the fox mask with each family's sensor
 (simulate_*.yaml); its frames, the gel at rest first, then press and release
-repeated, become lossless FFV1 videos at 60 frames/s written by OpenCV. Each
+repeated, become videos at 60 frames/s written by OpenCV, uncompressed as a
+camera delivers them (--codec ffv1: lossless FFV1, costly to decode). Each
 chain (chain_*.yaml and its peer) runs on core 0 (taskset -c 0) twice:
   rate:    the video as fast as it decodes (queue policy block), frames/s
   latency: the video at its 60 frames/s (realtime, drop_oldest as a camera),
@@ -101,30 +102,40 @@ def press_cycle(frames, count, press_frames):
     return [frames[0]] + [loop[k % len(loop)] for k in range(count - 1)]
 
 
-def write_video(path, frames):
+# How the videos hold their frames: uncompressed (as a camera delivers them
+# in a raw pixel format; grey for the marker sensor's grey cameras, BGR for
+# the colour ones), or FFV1, lossless but costly to decode (about 3 ms a
+# 320 x 240 frame on one core, twice per stereo pair).
+CODECS = {"raw": {"grey": ("GREY", False), "colour": ("RGBA", True)},
+          "ffv1": {"grey": ("FFV1", True), "colour": ("FFV1", True)}}
+
+
+def write_video(path, frames, codec):
     h, w = frames[0].shape[:2]
-    writer = cv2.VideoWriter(path, cv2.CAP_FFMPEG, cv2.VideoWriter_fourcc(*"FFV1"), FPS, (w, h), True)
+    fourcc, colour = CODECS[codec]["grey" if frames[0].ndim == 2 else "colour"]
+    writer = cv2.VideoWriter(path, cv2.CAP_FFMPEG, cv2.VideoWriter_fourcc(*fourcc), FPS, (w, h), colour)
     if not writer.isOpened():
-        raise SystemExit(f"make_live_chains: this OpenCV cannot write FFV1 to {path}")
+        raise SystemExit(f"make_live_chains: this OpenCV cannot write {fourcc} to {path}")
     for f in frames:
-        writer.write(f if f.ndim == 3 else cv2.cvtColor(f, cv2.COLOR_GRAY2BGR))
+        writer.write(f if (f.ndim == 3) == colour else cv2.cvtColor(f, cv2.COLOR_GRAY2BGR))
     writer.release()
 
 
-def make_videos(tc, folder, count, press_frames, simulated_frames):
+def make_videos(tc, folder, count, press_frames, simulated_frames, codec):
     """Each family's simulated press (its first `simulated_frames` frames when
-    given) as FFV1 videos of `count` frames."""
+    given) as videos of `count` frames."""
     sims = {"gelsight": "sim.image", "colour": "sim.colour_frame", "markers": "sim.frame"}
     limit = {"touch.max_iterations": str(simulated_frames)} if simulated_frames else {}
     for family, port in sims.items():
         r = tc.run(os.path.join(HERE, f"simulate_{family}.yaml"), set=limit, outputs=[port], every_iteration=True)
         shots = r.outputs[port]
         if family == "gelsight":
-            write_video(os.path.join(folder, "gelsight.avi"), press_cycle([s["image"] for s in shots], count, press_frames))
+            write_video(os.path.join(folder, "gelsight.avi"), press_cycle([s["image"] for s in shots], count, press_frames),
+                        codec)
         else:
             for side in ("left", "right"):
                 write_video(os.path.join(folder, f"{family}_{side}.avi"),
-                            press_cycle([s[side] for s in shots], count, press_frames))
+                            press_cycle([s[side] for s in shots], count, press_frames), codec)
 
 
 def stream_touchcloud(name, videos, out, realtime):
@@ -240,13 +251,15 @@ def main():
     parser.add_argument("--frames", type=int, default=600, help="frames per video (60 frames/s)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--press-frames", type=int, default=16, help="frames of each press kept from the simulation")
+    parser.add_argument("--codec", choices=sorted(CODECS), default="raw",
+                        help="the videos uncompressed (raw, as a camera delivers) or FFV1 (lossless, costly to decode)")
     parser.add_argument("--simulated-frames", type=int, help="simulate only this many frames of each press (a quick check)")
     args = parser.parse_args()
     tc = touchcloud_module()
     os.makedirs(args.out, exist_ok=True)
     rows, stage_rows, costs = [], [], []
     with tempfile.TemporaryDirectory() as scratch:
-        make_videos(tc, scratch, args.frames, args.press_frames, args.simulated_frames)
+        make_videos(tc, scratch, args.frames, args.press_frames, args.simulated_frames, args.codec)
         for name, chain in CHAINS.items():
             videos = [os.path.join(scratch, v) for v in chain["videos"]]
             same = compare_clouds(tc, name, videos)
@@ -306,10 +319,12 @@ def write_tables(args, rows, stage_rows, costs):
     with open(os.path.join(args.out, "results.md"), "w") as f:
         f.write("# Live chains at 320 x 240 px on one core\n\n"
                 f"Made by `benchmarks/live_chains/make_live_chains.py --out benchmarks/live_chains --frames {args.frames} "
-                f"--repeats {args.repeats}` on {machine()}; every run pinned to core 0 (`taskset -c 0`), "
+                f"--repeats {args.repeats}{'' if args.codec == 'raw' else ' --codec ' + args.codec}` on {machine()}; every run pinned to core 0 (`taskset -c 0`), "
                 f"OpenCV {cv2.__version__}, NumPy {np.__version__}, Python {platform.python_version()}. "
                 f"Load average (1 min) from {min(loads):.2f} to {max(loads):.2f} while it ran.\n\n"
-                f"Each video: {args.frames} frames at {FPS} frames/s, FFV1 (lossless) written by OpenCV from the "
+                f"Each video: {args.frames} frames at {FPS} frames/s, "
+                f"{'uncompressed (grey for the marker cameras, BGR for the others)' if args.codec == 'raw' else 'FFV1 (lossless)'}"
+                " written by OpenCV from the "
                 "simulator's press of the fox mask (the gel at rest, then press and release repeated). "
                 "Rate: the video as fast as it decodes; latency: the video at its 60 frames/s as a camera "
                 "delivers it (drop_oldest), from capture to the chain's end. Fastest of "

@@ -186,6 +186,18 @@ def stereo_camera(sensor_file):
     return k, (left["width_px"], left["height_px"]), baseline, centre
 
 
+def rectification(sensor_file):
+    """The rectified pair's size, the left camera's centre in the sensor frame,
+    R1, Q and a function rectifying one view (0 left, 1 right)."""
+    k, size, baseline, centre = stereo_camera(sensor_file)
+    r1, r2, p1, p2, q, _, _ = cv2.stereoRectify(k, None, k, None, size, np.eye(3), np.array([-baseline, 0.0, 0.0]),
+                                                flags=cv2.CALIB_ZERO_DISPARITY, alpha=0, newImageSize=size)
+    maps = [cv2.initUndistortRectifyMap(k, None, r, p, size, cv2.CV_32FC1) for r, p in ((r1, p1), (r2, p2))]
+    rect = lambda image, side: cv2.remap(image, maps[side][0], maps[side][1], cv2.INTER_LINEAR,
+                                         borderMode=cv2.BORDER_CONSTANT)
+    return size, centre, r1, q, rect
+
+
 def colour_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness=10,
                  max_lr_difference=1.0, smoothing_px=5, cleanup_px=5, contact_margin=None):
     """With `contact_margin` (chain_colour_fast.yaml): one SGBM_3WAY pass with
@@ -194,17 +206,12 @@ def colour_chain(sensor_file, threshold_grey, block, min_disparity, num_disparit
     if contact_margin is not None:
         return colour_fast_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness,
                                  max_lr_difference, smoothing_px, cleanup_px, contact_margin)
-    k, size, baseline, centre = stereo_camera(sensor_file)
+    size, centre, r1, q, rect = rectification(sensor_file)
     w, h = size
-    r1, r2, p1, p2, q, _, _ = cv2.stereoRectify(k, None, k, None, size, np.eye(3), np.array([-baseline, 0.0, 0.0]),
-                                                flags=cv2.CALIB_ZERO_DISPARITY, alpha=0, newImageSize=size)
-    maps = [cv2.initUndistortRectifyMap(k, None, r, p, size, cv2.CV_32FC1) for r, p in ((r1, p1), (r2, p2))]
     area = block * block
     sgbm = cv2.StereoSGBM_create(min_disparity, num_disparities, block, 8 * 3 * area, 32 * 3 * area, -1, 0, uniqueness,
                                  0, 0, cv2.STEREO_SGBM_MODE_SGBM)
     square = cv2.getStructuringElement(cv2.MORPH_RECT, (cleanup_px, cleanup_px))
-    rect = lambda image, side: cv2.remap(image, maps[side][0], maps[side][1], cv2.INTER_LINEAR,
-                                         borderMode=cv2.BORDER_CONSTANT)
     cols = np.arange(w, dtype=np.float64)[None, :].repeat(h, 0)
     rows = np.arange(h, dtype=np.float64)[:, None].repeat(w, 1)
     row_index = np.arange(h)[:, None].repeat(w, 1)
@@ -263,17 +270,12 @@ def colour_chain(sensor_file, threshold_grey, block, min_disparity, num_disparit
 
 def colour_fast_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness,
                       max_lr_difference, smoothing_px, cleanup_px, margin):
-    k, size, baseline, centre = stereo_camera(sensor_file)
+    size, centre, r1, q, rect = rectification(sensor_file)
     w, h = size
-    r1, r2, p1, p2, q, _, _ = cv2.stereoRectify(k, None, k, None, size, np.eye(3), np.array([-baseline, 0.0, 0.0]),
-                                                flags=cv2.CALIB_ZERO_DISPARITY, alpha=0, newImageSize=size)
-    maps = [cv2.initUndistortRectifyMap(k, None, r, p, size, cv2.CV_32FC1) for r, p in ((r1, p1), (r2, p2))]
     area = block * block
     sgbm = cv2.StereoSGBM_create(min_disparity, num_disparities, block, 8 * 3 * area, 32 * 3 * area,
                                  int(np.ceil(max_lr_difference)), 0, uniqueness, 0, 0, cv2.STEREO_SGBM_MODE_SGBM_3WAY)
     square = cv2.getStructuringElement(cv2.MORPH_RECT, (cleanup_px, cleanup_px))
-    rect = lambda image, side: cv2.remap(image, maps[side][0], maps[side][1], cv2.INTER_LINEAR,
-                                         borderMode=cv2.BORDER_CONSTANT)
     reach = min_disparity + num_disparities
     left_from_rect = r1.T
 

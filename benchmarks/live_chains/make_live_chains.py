@@ -6,7 +6,8 @@ same run.
 
 The simulator presses the fox mask with each family's sensor
 (simulate_*.yaml); its frames, the gel at rest first, then press and release
-repeated, become lossless FFV1 videos at 60 frames/s written by OpenCV. Each
+repeated, become videos at 60 frames/s written by OpenCV, uncompressed as a
+camera delivers them (--codec ffv1: lossless FFV1, costly to decode). Each
 chain (chain_*.yaml and its peer) runs on core 0 (taskset -c 0) twice:
   rate:    the video as fast as it decodes (queue policy block), frames/s
   latency: the video at its 60 frames/s (realtime, drop_oldest as a camera),
@@ -61,6 +62,14 @@ CHAINS = {
                                                    block=7, min_disparity=48, num_disparities=96),
         "reference_processed": False, "same_pixels": True,
     },
+    "colour_fast": {
+        "title": "colour-pattern GelStereo, fast: one-pass SGBM of the contact to cloud",
+        "videos": ["colour_left.avi", "colour_right.avi"], "sources": ["cam.left_video", "cam.right_video"],
+        "cloud": "cloud.cloud", "grey": False,
+        "peer": lambda: opencv_chains.colour_chain(os.path.join(HERE, "scene_colour.yaml"), threshold_grey=20,
+                                                   block=7, min_disparity=64, num_disparities=48, contact_margin=8),
+        "reference_processed": False, "same_pixels": True, "against": "colour",
+    },
     "markers": {
         "title": "marker GelStereo: markers, matching and tracking to cloud",
         "videos": ["markers_left.avi", "markers_right.avi"], "sources": ["cam.left_video", "cam.right_video"],
@@ -93,30 +102,40 @@ def press_cycle(frames, count, press_frames):
     return [frames[0]] + [loop[k % len(loop)] for k in range(count - 1)]
 
 
-def write_video(path, frames):
+# How the videos hold their frames: uncompressed (as a camera delivers them
+# in a raw pixel format; grey for the marker sensor's grey cameras, BGR for
+# the colour ones), or FFV1, lossless but costly to decode (about 3 ms a
+# 320 x 240 frame on one core, twice per stereo pair).
+CODECS = {"raw": {"grey": ("GREY", False), "colour": ("RGBA", True)},
+          "ffv1": {"grey": ("FFV1", True), "colour": ("FFV1", True)}}
+
+
+def write_video(path, frames, codec):
     h, w = frames[0].shape[:2]
-    writer = cv2.VideoWriter(path, cv2.CAP_FFMPEG, cv2.VideoWriter_fourcc(*"FFV1"), FPS, (w, h), True)
+    fourcc, colour = CODECS[codec]["grey" if frames[0].ndim == 2 else "colour"]
+    writer = cv2.VideoWriter(path, cv2.CAP_FFMPEG, cv2.VideoWriter_fourcc(*fourcc), FPS, (w, h), colour)
     if not writer.isOpened():
-        raise SystemExit(f"make_live_chains: this OpenCV cannot write FFV1 to {path}")
+        raise SystemExit(f"make_live_chains: this OpenCV cannot write {fourcc} to {path}")
     for f in frames:
-        writer.write(f if f.ndim == 3 else cv2.cvtColor(f, cv2.COLOR_GRAY2BGR))
+        writer.write(f if (f.ndim == 3) == colour else cv2.cvtColor(f, cv2.COLOR_GRAY2BGR))
     writer.release()
 
 
-def make_videos(tc, folder, count, press_frames, simulated_frames):
+def make_videos(tc, folder, count, press_frames, simulated_frames, codec):
     """Each family's simulated press (its first `simulated_frames` frames when
-    given) as FFV1 videos of `count` frames."""
+    given) as videos of `count` frames."""
     sims = {"gelsight": "sim.image", "colour": "sim.colour_frame", "markers": "sim.frame"}
     limit = {"touch.max_iterations": str(simulated_frames)} if simulated_frames else {}
     for family, port in sims.items():
         r = tc.run(os.path.join(HERE, f"simulate_{family}.yaml"), set=limit, outputs=[port], every_iteration=True)
         shots = r.outputs[port]
         if family == "gelsight":
-            write_video(os.path.join(folder, "gelsight.avi"), press_cycle([s["image"] for s in shots], count, press_frames))
+            write_video(os.path.join(folder, "gelsight.avi"), press_cycle([s["image"] for s in shots], count, press_frames),
+                        codec)
         else:
             for side in ("left", "right"):
                 write_video(os.path.join(folder, f"{family}_{side}.avi"),
-                            press_cycle([s[side] for s in shots], count, press_frames))
+                            press_cycle([s[side] for s in shots], count, press_frames), codec)
 
 
 def stream_touchcloud(name, videos, out, realtime):
@@ -184,6 +203,32 @@ def compare_clouds(tc, name, videos):
             "max_mean_z_difference_mm": depths, "max_point_difference_mm": points}
 
 
+def clouds_of(tc, name, videos):
+    chain = CHAINS[name]
+    sets = {source: video for source, video in zip(chain["sources"], videos)}
+    r = tc.run(os.path.join(HERE, f"chain_{name}.yaml"), set=sets, outputs=[chain["cloud"]], every_iteration=True)
+    return [c["points"] if isinstance(c, dict) else c for c in r.outputs[chain["cloud"]]]
+
+
+def accuracy_cost(tc, name, videos):
+    """A chain set for speed against the chain it stands for, on the same
+    frames with at least 20 points on both: points per frame, the mean over
+    frames of each point's distance to the nearest point of the other chain's
+    cloud (mm), and the largest difference in mean depth (z, mm)."""
+    fast, full = clouds_of(tc, name, videos), clouds_of(tc, CHAINS[name]["against"], videos)
+    nearest, depths, compared = [], 0.0, 0
+    for a, b in zip(fast, full):
+        if len(a) < 20 or len(b) < 20:
+            continue
+        compared += 1
+        d = np.sqrt(((a[:, None, :].astype(np.float64) - b[None, :, :]) ** 2).sum(axis=2)).min(axis=1)
+        nearest.append(float(d.mean()))
+        depths = max(depths, abs(float(a[:, 2].mean()) - float(b[:, 2].mean())))
+    return {"chain": name, "against": CHAINS[name]["against"], "frames_compared": compared,
+            "points": float(np.mean([len(a) for a in fast])), "points_against": float(np.mean([len(b) for b in full])),
+            "mean_nearest_mm": float(np.mean(nearest)) if nearest else float("nan"), "max_mean_z_difference_mm": depths}
+
+
 def machine():
     model = "unknown CPU"
     flags = ""
@@ -206,16 +251,20 @@ def main():
     parser.add_argument("--frames", type=int, default=600, help="frames per video (60 frames/s)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--press-frames", type=int, default=16, help="frames of each press kept from the simulation")
+    parser.add_argument("--codec", choices=sorted(CODECS), default="raw",
+                        help="the videos uncompressed (raw, as a camera delivers) or FFV1 (lossless, costly to decode)")
     parser.add_argument("--simulated-frames", type=int, help="simulate only this many frames of each press (a quick check)")
     args = parser.parse_args()
     tc = touchcloud_module()
     os.makedirs(args.out, exist_ok=True)
-    rows, stage_rows = [], []
+    rows, stage_rows, costs = [], [], []
     with tempfile.TemporaryDirectory() as scratch:
-        make_videos(tc, scratch, args.frames, args.press_frames, args.simulated_frames)
+        make_videos(tc, scratch, args.frames, args.press_frames, args.simulated_frames, args.codec)
         for name, chain in CHAINS.items():
             videos = [os.path.join(scratch, v) for v in chain["videos"]]
             same = compare_clouds(tc, name, videos)
+            if "against" in chain:
+                costs.append(accuracy_cost(tc, name, videos))
             best = {"ours_rate": None, "ours_latency": None, "peer_rate": None, "peer_latency": None}
             loads = []
             for k in range(args.repeats):
@@ -252,10 +301,10 @@ def main():
             for stage, lat in o["stages"].items():
                 stage_rows.append({"chain": name, "stage": stage, "p50_ms": lat["p50"], "p95_ms": lat["p95"],
                                    "p99_ms": lat["p99"]})
-    write_tables(args, rows, stage_rows)
+    write_tables(args, rows, stage_rows, costs)
 
 
-def write_tables(args, rows, stage_rows):
+def write_tables(args, rows, stage_rows, costs):
     with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
@@ -270,10 +319,12 @@ def write_tables(args, rows, stage_rows):
     with open(os.path.join(args.out, "results.md"), "w") as f:
         f.write("# Live chains at 320 x 240 px on one core\n\n"
                 f"Made by `benchmarks/live_chains/make_live_chains.py --out benchmarks/live_chains --frames {args.frames} "
-                f"--repeats {args.repeats}` on {machine()}; every run pinned to core 0 (`taskset -c 0`), "
+                f"--repeats {args.repeats}{'' if args.codec == 'raw' else ' --codec ' + args.codec}` on {machine()}; every run pinned to core 0 (`taskset -c 0`), "
                 f"OpenCV {cv2.__version__}, NumPy {np.__version__}, Python {platform.python_version()}. "
                 f"Load average (1 min) from {min(loads):.2f} to {max(loads):.2f} while it ran.\n\n"
-                f"Each video: {args.frames} frames at {FPS} frames/s, FFV1 (lossless) written by OpenCV from the "
+                f"Each video: {args.frames} frames at {FPS} frames/s, "
+                f"{'uncompressed (grey for the marker cameras, BGR for the others)' if args.codec == 'raw' else 'FFV1 (lossless)'}"
+                " written by OpenCV from the "
                 "simulator's press of the fox mask (the gel at rest, then press and release repeated). "
                 "Rate: the video as fast as it decodes; latency: the video at its 60 frames/s as a camera "
                 "delivers it (drop_oldest), from capture to the chain's end. Fastest of "
@@ -298,6 +349,15 @@ def write_tables(args, rows, stage_rows):
                     f"{100 * r['max_points_difference']:.1f} % | {r['max_mean_z_difference_mm']:.4f} | "
                     f"{'-' if r['max_point_difference_mm'] is None else format(r['max_point_difference_mm'], '.2g')} | "
                     f"{r['frames_compared']} |\n")
+        f.write("\nWhat a chain set for speed costs in accuracy: its clouds against those of the chain it stands "
+                "for, frame by frame on the same frames (those with at least 20 points on both): mean points per "
+                "frame, the mean over frames of each point's distance to the nearest point of the other cloud, and "
+                "the largest difference in mean depth (z in the sensor frame).\n\n| chain | against | points | "
+                "points, against | mean distance to the nearest point (mm) | largest mean depth difference (mm) | "
+                "frames compared |\n|---|---|---|---|---|---|---|\n")
+        for c in costs:
+            f.write(f"| {c['chain']} | {c['against']} | {c['points']:.0f} | {c['points_against']:.0f} | "
+                    f"{c['mean_nearest_mm']:.4f} | {c['max_mean_z_difference_mm']:.4f} | {c['frames_compared']} |\n")
         f.write("\nWhere touchcloud's time goes (its rate runs' per-stage latency, ms; `cam` is the source's call, "
                 "taking the frame from the queue):\n\n| chain | stage | p50 | p95 | p99 |\n|---|---|---|---|---|\n")
         for r in stage_rows:

@@ -28,7 +28,8 @@ import yaml
 class Feed:
     """A capture thread over cv2.VideoCapture into a bounded queue: `block` holds
     capture back, `drop_oldest` loses the oldest frame (counted); `realtime`
-    delivers frame k at k / fps, as a camera."""
+    delivers frame k at k / fps, as a camera, stamped with that time (its
+    latency counts from when it was due)."""
 
     def __init__(self, paths, queue_frames=4, drop_oldest=False, realtime=False, grey=False):
         self.caps = [cv2.VideoCapture(p, cv2.CAP_FFMPEG) for p in paths]
@@ -59,11 +60,12 @@ class Feed:
             views = self._read()
             if views is None:
                 break
-            if self.realtime:
-                delay = start + k / self.fps - time.perf_counter()
+            captured_at = time.perf_counter()
+            if self.realtime:  # captured when due, however late this thread wakes, as touchcloud's feed
+                captured_at = start + k / self.fps
+                delay = captured_at - time.perf_counter()
                 if delay > 0:
                     time.sleep(delay)
-            captured_at = time.perf_counter()
             k += 1
             with self.cond:
                 if len(self.queue) >= self.capacity:
@@ -184,19 +186,32 @@ def stereo_camera(sensor_file):
     return k, (left["width_px"], left["height_px"]), baseline, centre
 
 
-def colour_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness=10,
-                 max_lr_difference=1.0, smoothing_px=5, cleanup_px=5):
+def rectification(sensor_file):
+    """The rectified pair's size, the left camera's centre in the sensor frame,
+    R1, Q and a function rectifying one view (0 left, 1 right)."""
     k, size, baseline, centre = stereo_camera(sensor_file)
-    w, h = size
     r1, r2, p1, p2, q, _, _ = cv2.stereoRectify(k, None, k, None, size, np.eye(3), np.array([-baseline, 0.0, 0.0]),
                                                 flags=cv2.CALIB_ZERO_DISPARITY, alpha=0, newImageSize=size)
     maps = [cv2.initUndistortRectifyMap(k, None, r, p, size, cv2.CV_32FC1) for r, p in ((r1, p1), (r2, p2))]
+    rect = lambda image, side: cv2.remap(image, maps[side][0], maps[side][1], cv2.INTER_LINEAR,
+                                         borderMode=cv2.BORDER_CONSTANT)
+    return size, centre, r1, q, rect
+
+
+def colour_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness=10,
+                 max_lr_difference=1.0, smoothing_px=5, cleanup_px=5, contact_margin=None):
+    """With `contact_margin` (chain_colour_fast.yaml): one SGBM_3WAY pass with
+    OpenCV's own left-right check over the contact's bounding box and that
+    margin, the cloud from the left disparity."""
+    if contact_margin is not None:
+        return colour_fast_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness,
+                                 max_lr_difference, smoothing_px, cleanup_px, contact_margin)
+    size, centre, r1, q, rect = rectification(sensor_file)
+    w, h = size
     area = block * block
     sgbm = cv2.StereoSGBM_create(min_disparity, num_disparities, block, 8 * 3 * area, 32 * 3 * area, -1, 0, uniqueness,
                                  0, 0, cv2.STEREO_SGBM_MODE_SGBM)
     square = cv2.getStructuringElement(cv2.MORPH_RECT, (cleanup_px, cleanup_px))
-    rect = lambda image, side: cv2.remap(image, maps[side][0], maps[side][1], cv2.INTER_LINEAR,
-                                         borderMode=cv2.BORDER_CONSTANT)
     cols = np.arange(w, dtype=np.float64)[None, :].repeat(h, 0)
     rows = np.arange(h, dtype=np.float64)[:, None].repeat(w, 1)
     row_index = np.arange(h)[:, None].repeat(w, 1)
@@ -245,6 +260,53 @@ def colour_chain(sensor_file, threshold_grey, block, min_disparity, num_disparit
             d = 0.5 * (d_left + d_right)
             points = q @ np.stack([x, y, d, np.ones_like(d)])
             good &= points[3] > 0
+            xyz = (left_from_rect @ (points[:3, good] / points[3, good])).T + centre
+            return xyz.astype(np.float32)
+
+        return process
+
+    return chain
+
+
+def colour_fast_chain(sensor_file, threshold_grey, block, min_disparity, num_disparities, uniqueness,
+                      max_lr_difference, smoothing_px, cleanup_px, margin):
+    size, centre, r1, q, rect = rectification(sensor_file)
+    w, h = size
+    area = block * block
+    sgbm = cv2.StereoSGBM_create(min_disparity, num_disparities, block, 8 * 3 * area, 32 * 3 * area,
+                                 int(np.ceil(max_lr_difference)), 0, uniqueness, 0, 0, cv2.STEREO_SGBM_MODE_SGBM_3WAY)
+    square = cv2.getStructuringElement(cv2.MORPH_RECT, (cleanup_px, cleanup_px))
+    reach = min_disparity + num_disparities
+    left_from_rect = r1.T
+
+    def chain(reference_views):
+        reference_left = rect(reference_views[0], 0)
+
+        def process(views):
+            left, right = rect(views[0], 0), rect(views[1], 1)
+            difference = cv2.blur(cv2.absdiff(left, reference_left).max(axis=2), (smoothing_px, smoothing_px))
+            mask = ((difference > threshold_grey) * 255).astype(np.uint8)
+            mask = cv2.morphologyEx(cv2.morphologyEx(mask, cv2.MORPH_OPEN, square), cv2.MORPH_CLOSE, square)
+            x, y, bw, bh = cv2.boundingRect(mask)
+            if bw == 0:
+                return np.zeros((0, 3), np.float32)
+            # The contact's box and margin, its search range to its left, at least a block high.
+            x0, y0 = max(0, x - margin), max(0, y - margin)
+            x1, y1 = min(w, x + bw + margin), min(h, y + bh + margin)
+            grow = max(0, block - (y1 - y0))
+            y0, y1 = max(0, y0 - grow // 2), min(h, y1 + (grow + 1) // 2)
+            if x1 <= reach:
+                return np.zeros((0, 3), np.float32)
+            cx0 = max(0, x0 - reach)
+            cx1 = max(x1, cx0 + reach + 1)
+            raw = sgbm.compute(np.ascontiguousarray(left[y0:y1, cx0:cx1]), np.ascontiguousarray(right[y0:y1, cx0:cx1]))
+            d = np.zeros((h, w), np.float32)
+            d[y0:y1, x0:x1] = raw[:, x0 - cx0:x1 - cx0].astype(np.float32) / 16
+            valid = d >= min_disparity
+            ys, xs = np.nonzero((mask > 0) & valid)
+            disparity = d[ys, xs].astype(np.float64)
+            points = q @ np.stack([xs, ys, disparity, np.ones_like(disparity)])
+            good = points[3] > 0
             xyz = (left_from_rect @ (points[:3, good] / points[3, good])).T + centre
             return xyz.astype(np.float32)
 

@@ -52,6 +52,11 @@ void MatcherOptions::validate() const {
 
 DisparityMatcher::DisparityMatcher(const MatcherOptions& options) : options_(options) { options_.validate(); }
 
+// OpenCV's disp12MaxDiff: -1 (off) where our own check runs on both views.
+int DisparityMatcher::within_pass_check() const {
+  return options_.lr_check && !options_.right_pass ? static_cast<int>(std::ceil(options_.max_lr_difference_px)) : -1;
+}
+
 cv::Mat DisparityMatcher::raw_disparity(const cv::Mat& left_in, const cv::Mat& right_in) const {
   const MatcherOptions& o = options_;
   const int pad = o.full_width ? o.min_disparity_px + o.num_disparities : 0;
@@ -69,20 +74,23 @@ cv::Mat DisparityMatcher::raw_disparity(const cv::Mat& left_in, const cv::Mat& r
     auto bm = cv::StereoBM::create(o.num_disparities, o.block_size_px);
     bm->setMinDisparity(o.min_disparity_px);
     bm->setUniquenessRatio(o.uniqueness_ratio);
-    bm->setDisp12MaxDiff(-1);   // our own check, on both views
+    bm->setDisp12MaxDiff(within_pass_check());
     bm->setSpeckleWindowSize(0);
     bm->compute(left_grey, right_grey, raw);
   } else {
     const int channels = left.channels(), area = o.block_size_px * o.block_size_px;
     // OpenCV's recommended smoothness penalties for this block and colour count.
+    const int mode = o.sgbm_mode == SgbmMode::ThreeWay    ? cv::StereoSGBM::MODE_SGBM_3WAY
+                     : o.sgbm_mode == SgbmMode::FourPaths ? cv::StereoSGBM::MODE_HH4
+                                                          : cv::StereoSGBM::MODE_SGBM;
     auto sgbm = cv::StereoSGBM::create(o.min_disparity_px, o.num_disparities, o.block_size_px, 8 * channels * area,
-                                       32 * channels * area, -1, 0, o.uniqueness_ratio, 0, 0, cv::StereoSGBM::MODE_SGBM);
+                                       32 * channels * area, within_pass_check(), 0, o.uniqueness_ratio, 0, 0, mode);
     sgbm->compute(left, right, raw);
   }
   return pad > 0 ? raw.colRange(pad, raw.cols).clone() : raw;
 }
 
-DisparityPair DisparityMatcher::match(const cv::Mat& left, const cv::Mat& right, const std::string& where) const {
+void DisparityMatcher::check_pair(const cv::Mat& left, const cv::Mat& right, const std::string& where) const {
   if (left.empty() || right.empty())
     throw InputError(where + ": the " + std::string(left.empty() ? "left" : "right") + " image is empty");
   if (left.size() != right.size())
@@ -98,9 +106,19 @@ DisparityPair DisparityMatcher::match(const cv::Mat& left, const cv::Mat& right,
     throw InputError(where + ": the images (" + size_text(left) + " px) are too small for block_size_px " +
                      std::to_string(o.block_size_px) + " and disparities up to " +
                      std::to_string(o.min_disparity_px + o.num_disparities - 1) + " px");
+}
+
+DisparityPair DisparityMatcher::match(const cv::Mat& left, const cv::Mat& right, const std::string& where) const {
+  check_pair(left, right, where);
+  const MatcherOptions& o = options_;
   DisparityPair pair;
   try {
     to_px(raw_disparity(left, right), o.min_disparity_px, pair.left_px, pair.valid_left);
+    if (!o.right_pass) {  // one pass: no right view's disparities, its check was OpenCV's
+      pair.right_px = cv::Mat::zeros(left.size(), CV_32FC1);
+      pair.valid_right = cv::Mat::zeros(left.size(), CV_8UC1);
+      return pair;
+    }
     // The right view's disparities: the mirrored pair, right image as the reference.
     cv::Mat left_mirror, right_mirror;
     cv::flip(right, left_mirror, 1);
@@ -112,6 +130,38 @@ DisparityPair DisparityMatcher::match(const cv::Mat& left, const cv::Mat& right,
     throw InputError(where + ": OpenCV's matcher refused the pair: " + e.err);
   }
   if (o.lr_check) check_left_right(pair, o.max_lr_difference_px);
+  return pair;
+}
+
+DisparityPair DisparityMatcher::match_region(const cv::Mat& left, const cv::Mat& right, cv::Rect region,
+                                             const std::string& where) const {
+  check_pair(left, right, where);
+  const MatcherOptions& o = options_;
+  if (o.right_pass)
+    throw InputError(where + ": matching a region is one pass, without the right view's (right_pass: false)");
+  DisparityPair pair{cv::Mat::zeros(left.size(), CV_32FC1), cv::Mat::zeros(left.size(), CV_32FC1),
+                     cv::Mat::zeros(left.size(), CV_8UC1), cv::Mat::zeros(left.size(), CV_8UC1)};
+  region &= cv::Rect(0, 0, left.cols, left.rows);
+  if (region.empty()) return pair;
+  // The region's rows (at least a block high), and its columns with the
+  // search range to their left, where their matches lie.
+  const int reach = o.min_disparity_px + o.num_disparities;
+  const int grow = std::max(0, o.block_size_px - region.height);
+  const int y0 = std::max(0, region.y - grow / 2), y1 = std::min(left.rows, region.y + region.height + (grow + 1) / 2);
+  const int x0 = std::max(0, region.x - reach), x1 = region.x + region.width;
+  if (!o.full_width && x1 <= reach) return pair;  // all in the columns OpenCV leaves unmatched
+  const cv::Rect crop(x0, y0, std::max(x1 - x0, reach + 1), y1 - y0);
+  cv::Mat px, valid;
+  try {
+    to_px(raw_disparity(left(crop & cv::Rect(0, 0, left.cols, left.rows)).clone(),
+                        right(crop & cv::Rect(0, 0, left.cols, left.rows)).clone()),
+          o.min_disparity_px, px, valid);
+  } catch (const cv::Exception& e) {
+    throw InputError(where + ": OpenCV's matcher refused the pair: " + e.err);
+  }
+  const cv::Rect kept(region.x - x0, region.y - y0, region.width, region.height);
+  px(kept).copyTo(pair.left_px(region));
+  valid(kept).copyTo(pair.valid_left(region));
   return pair;
 }
 

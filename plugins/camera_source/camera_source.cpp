@@ -206,7 +206,7 @@ class CameraSource final : public Stage {
     io.output("reference", reference_);
     io.output("reference_image", reference_grey_);
     io.output("stamp", shot->stamp);
-    if (io.wants("done")) io.output("done", finite() && feed_->ended(queue_.frame_timeout_s));
+    if (io.wants("done")) io.output("done", finite() && shot->last);
   }
 
   void on_finish(RunContext& ctx) override {

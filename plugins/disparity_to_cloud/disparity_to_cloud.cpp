@@ -83,7 +83,9 @@ class DisparityToCloud final : public Stage {
     if (mask && (mask->size() != size || mask->type() != CV_8UC1))
       throw InputError("input 'mask': the contact mask is not a CV_8UC1 map of the disparity's size");
     conversion_->require_same_camera(maps.camera, where);
-    if (cv::countNonZero(maps.valid_left) == 0)
+    // With a contact mask, a map matched only where the contact is (or no
+    // contact: nothing matched) gives what it has, maybe no point.
+    if (!mask && cv::countNonZero(maps.valid_left) == 0)
       throw InputError(where + ": the left disparity map has no valid pixel (frame " + std::to_string(maps.index) + ")");
     // Rows in contiguous blocks, one per thread, each row's points apart;
     // joined in row order, so the cloud is the same whatever the thread count.

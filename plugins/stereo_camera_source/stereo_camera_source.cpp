@@ -121,7 +121,7 @@ class StereoCameraSource final : public Stage {
   std::vector<std::unique_ptr<camera::Recording>> recordings_;  // each camera's, declared before the feed that writes them
   std::unique_ptr<camera::StereoFeed> feed_;
   StereoFramePtr reference_;
-  std::optional<camera::ShotPair> pending_;  // a recording's next pair, read ahead to know `done`
+  std::optional<camera::ShotPair> pending_;  // a recording's next pair, taken early where only it tells `done`
   camera::FrameTally tally_;
   double skew_max_ms_ = 0;
 
@@ -267,8 +267,12 @@ class StereoCameraSource final : public Stage {
       io.output("reference", reference_);
     }
     if (io.wants("done")) {
-      if (finite()) pending_ = next_pair(ctx);
-      io.output("done", finite() && !pending_);
+      std::optional<bool> last = finite() ? feed_->last(*pair) : false;
+      if (!last) {  // the frames after this pair too far apart to tell: the next pair decides
+        pending_ = next_pair(ctx);
+        last = !pending_;
+      }
+      io.output("done", *last);
     }
     ctx.metric("frames_dropped", static_cast<double>(feed_->dropped()), "frames");
     ctx.metric("pairs_refused", static_cast<double>(feed_->refused()), "pairs");

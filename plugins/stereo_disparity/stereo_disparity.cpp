@@ -5,6 +5,7 @@
 #include <optional>
 
 #include <opencv2/core/version.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "touchcloud/imaging/disparity_matcher.hpp"
 #include "touchcloud/library_versions.hpp"
@@ -23,6 +24,7 @@ using imaging::MatchMethod;
 
 class StereoDisparity final : public Stage {
   imaging::MatcherOptions o_;
+  int contact_margin_px_ = 8;
   std::optional<imaging::DisparityMatcher> matcher_;
 
   void declare_parameters(ParameterSet& p) override {
@@ -45,6 +47,19 @@ class StereoDisparity final : public Stage {
         .unit("px")
         .at_least(0)
         .doc("largest difference between the left and the right view's disparity that the check accepts");
+    p.add("sgbm_mode", o_.sgbm_mode, imaging::SgbmMode::FivePaths,
+          {{"sgbm", imaging::SgbmMode::FivePaths},
+           {"sgbm_3way", imaging::SgbmMode::ThreeWay},
+           {"hh4", imaging::SgbmMode::FourPaths}})
+        .doc("SGBM's paths: OpenCV's MODE_SGBM (five directions), MODE_SGBM_3WAY (three, faster) or MODE_HH4 (four)");
+    p.add("right_pass", o_.right_pass, true)
+        .doc("match the mirrored pair too, for the right view's disparities (the left-right check on both views, "
+             "Eq. 7's average); false: one pass, OpenCV's own check within it, the right map all invalid "
+             "(disparity_to_cloud with disparity: left)");
+    p.add("contact_margin_px", contact_margin_px_, 8)
+        .unit("px")
+        .at_least(0)
+        .doc("with a contact input: the margin matched around the contact's bounding box");
     p.add("full_width", o_.full_width, false)
         .doc("pad the pair so that the first min_disparity_px + num_disparities columns, which OpenCV leaves "
              "unmatched, are matched too");
@@ -65,6 +80,9 @@ class StereoDisparity final : public Stage {
 
   void declare_ports(PortSet& ports) override {
     ports.input<ColourStereoFramePtr>("frame", "rectified colour pair (8-bit BGR or grey, both the same size)");
+    ports.optional_input<DenseMapsPtr>("contact", "contact mask (contact_mask): only its bounding box, "
+                                                  "contact_margin_px around it, is matched (with right_pass: false); "
+                                                  "no contact, nothing matched");
     ports.output<DenseMapsPtr>("disparity", "left and right disparity maps (px) with validity masks, and the "
                                             "rectified camera");
     ports.metric("valid_left_share", "1", "share of the left map's pixels with a disparity").higher_is_better();
@@ -80,7 +98,22 @@ class StereoDisparity final : public Stage {
       throw InputError("input 'frame': the left image is " + std::to_string(frame->left.cols) + " x " +
                        std::to_string(frame->left.rows) + " px, but its rectified camera is " +
                        std::to_string(frame->camera.width_px) + " x " + std::to_string(frame->camera.height_px) + " px");
-    const auto pair = matcher_->match(frame->left, frame->right, "input 'frame' (frame " + std::to_string(frame->index) + ")");
+    const std::string where = "input 'frame' (frame " + std::to_string(frame->index) + ")";
+    imaging::DisparityPair pair;
+    if (const auto* contact = io.optional_input<DenseMapsPtr>("contact")) {
+      if (!*contact || (*contact)->contact_mask.empty()) throw InputError("input 'contact': no contact mask");
+      const cv::Mat& mask = (*contact)->contact_mask;
+      if (mask.size() != frame->left.size())
+        throw InputError("input 'contact': the contact mask is " + std::to_string(mask.cols) + " x " +
+                         std::to_string(mask.rows) + " px, the pair " + std::to_string(frame->left.cols) + " x " +
+                         std::to_string(frame->left.rows) + " px");
+      cv::Rect region = cv::boundingRect(mask);
+      if (!region.empty()) region = region + cv::Point(-contact_margin_px_, -contact_margin_px_) +
+                                    cv::Size(2 * contact_margin_px_, 2 * contact_margin_px_);
+      pair = matcher_->match_region(frame->left, frame->right, region, where);
+    } else {
+      pair = matcher_->match(frame->left, frame->right, where);
+    }
     auto maps = std::make_shared<DenseMaps>();
     maps->disparity_left_px = pair.left_px;
     maps->disparity_right_px = pair.right_px;

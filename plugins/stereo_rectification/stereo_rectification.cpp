@@ -46,6 +46,8 @@ class StereoRectification final : public Stage {
   cv::Size raw_size_, rect_size_;
   cv::Mat map_x_[2], map_y_[2];
   RectifiedStereo camera_;
+  StereoFramePtr last_in_;  // the frame rectified last, and its rectified pair
+  ColourStereoFramePtr last_out_;
 
   void declare_parameters(ParameterSet& p) override {
     p.add("sensor", sensor_file_, std::string())
@@ -151,6 +153,12 @@ class StereoRectification final : public Stage {
   void on_process(StageIO& io, RunContext&) override {
     const auto& in = io.input<StereoFramePtr>("frame");
     if (!in) throw InputError("input 'frame': no stereo frame (null)");
+    // The same frame again (a source's no-contact reference, handed on with
+    // every frame): its rectified pair is the one made last time.
+    if (in == last_in_) {
+      io.output<ColourStereoFramePtr>("frame", last_out_);
+      return;
+    }
     if (in->left.type() != in->right.type())
       throw InputError("input 'frame': the left image is " + cv::typeToString(in->left.type()) + " but the right " +
                        cv::typeToString(in->right.type()));
@@ -161,7 +169,9 @@ class StereoRectification final : public Stage {
     out->timestamp_s = in->timestamp_s;
     out->index = in->index;
     out->pose = in->pose;
-    io.output<ColourStereoFramePtr>("frame", std::move(out));
+    last_in_ = in;  // held, so no other frame can take its address
+    last_out_ = std::move(out);
+    io.output<ColourStereoFramePtr>("frame", last_out_);
   }
 };
 

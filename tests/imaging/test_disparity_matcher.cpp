@@ -197,3 +197,32 @@ TEST(DisparityMatcher, RefusesPairsThatAreNotOnePairOfOneSizeAndType) {
   EXPECT_NE(message(cv::Mat(360, 640, CV_16UC3), cv::Mat(360, 640, CV_16UC3)).find("CV_16UC3"), std::string::npos);
   EXPECT_NE(message(cv::Mat(20, 100, CV_8UC3), cv::Mat(20, 100, CV_8UC3)).find("too small"), std::string::npos);
 }
+
+// Set for speed (SGBM's three-way mode, one pass with OpenCV's own
+// left-right check, only the contact's box matched), the contact's
+// disparities are recovered about as well; nothing outside the box is
+// matched and the right map is all invalid.
+TEST(DisparityMatcher, OnePassOverTheContactRecoversItsTruth) {
+  const Pressed p = press(tilted_plane_obj(10.0, 10.0), "tilted.obj");
+  MatcherOptions o = options(MatchMethod::SemiGlobal, 7);
+  o.sgbm_mode = SgbmMode::ThreeWay;
+  o.right_pass = false;
+  const cv::Rect box = cv::boundingRect(p.truth.contact_mask) + cv::Point(-8, -8) + cv::Size(16, 16);
+  const DisparityPair found = DisparityMatcher(o).match_region(p.frame.left, p.frame.right, box, "contact");
+  const Errors contact = compare(found, p.truth, p.truth.contact_mask);
+  std::cout << "one pass over the contact: median " << contact.median_px << " px, within 1 px " << contact.within_1px
+            << " (" << contact.compared << " px)\n";
+  EXPECT_GT(contact.compared, 1000);
+  EXPECT_LT(contact.median_px, 0.3);
+  EXPECT_GT(contact.within_1px, 0.98);
+  cv::Mat outside = found.valid_left.clone();
+  outside(box & cv::Rect(0, 0, outside.cols, outside.rows)).setTo(0);
+  EXPECT_EQ(cv::countNonZero(outside), 0);
+  EXPECT_EQ(cv::countNonZero(found.valid_right), 0);
+  EXPECT_EQ(cv::countNonZero(found.right_px), 0);
+  // A region is matched in one pass only.
+  EXPECT_NE(input_error_of([&] { DisparityMatcher(options(MatchMethod::SemiGlobal, 7)).match_region(
+                                     p.frame.left, p.frame.right, box, "contact"); })
+                .find("contact: matching a region is one pass"),
+            std::string::npos);
+}

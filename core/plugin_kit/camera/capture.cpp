@@ -95,6 +95,13 @@ FrameFiles list_frame_files(const std::string& source) {
   return out;
 }
 
+std::chrono::steady_clock::time_point device_capture_time(std::chrono::steady_clock::time_point now,
+                                                          double buffer_ms) {
+  const std::chrono::steady_clock::time_point buffer{std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double, std::milli>(buffer_ms))};
+  return buffer <= now && now - buffer < std::chrono::seconds(1) ? buffer : now;
+}
+
 std::optional<cv::Mat> first_frame(const CaptureSettings& s) {
   if (s.kind == SourceKind::gstreamer) return std::nullopt;
   if (s.kind == SourceKind::device) {
@@ -204,10 +211,11 @@ std::optional<Shot> Capture::next() {
                    std::to_string(read_) + " (unplugged, or no frame within " +
                    std::to_string(static_cast<int>(settings_.open_timeout_s)) + " s)");
   }
-  shot.captured_at = std::chrono::steady_clock::now();
+  const auto read_at = std::chrono::steady_clock::now();
   shot.image = shape(raw, "the " + std::string(describe(kind_)) + " " + settings_.source + "'s frame " +
                               std::to_string(read_));
   const double ms = video_.get(cv::CAP_PROP_POS_MSEC);
+  shot.captured_at = kind_ == SourceKind::device ? device_capture_time(read_at, ms) : read_at;
   if (!first_ms_) first_ms_ = ms;
   // A device numbers its frames by its clock: a step of more than one
   // frame period is frames it dropped before we saw them.

@@ -28,38 +28,58 @@ FrameFeed::~FrameFeed() {
 
 void FrameFeed::capture_loop() {
   const auto start = std::chrono::steady_clock::now();
+  // A recording is read one frame ahead: each frame then knows whether
+  // another follows (a stage's `done` needs no wait for the next frame's
+  // time), and the next frame is decoded while this one waits to be due.
+  const bool ahead = capture_->kind() == SourceKind::video_file || capture_->kind() == SourceKind::image_files;
   run_to_end(
       [&] {
-        for (;;) {
-          std::optional<Shot> shot = capture_->next();
-          if (shot && realtime_) {  // a recording delivered at the pace it was recorded
-            const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                         std::chrono::duration<double>(shot->stamp.timestamp_s));
-            std::unique_lock lock(mutex_);
-            if (changed_.wait_until(lock, due, [&] { return stopping_; })) return;
-            shot->captured_at = std::chrono::steady_clock::now();  // when a camera would have delivered it
-          }
-          if (shot && on_capture_) on_capture_(*shot);
-          std::unique_lock lock(mutex_);
-          if (stopping_) return;
-          if (!shot) return;
-          ++captured_;
-          if (!first_sequence_) first_sequence_ = shot->stamp.sequence;
-          if (queue_.size() >= capacity_) {
-            if (when_behind_ == WhenBehind::drop_oldest) {
-              queue_.pop_front();
-              ++dropped_;
-            } else {
-              changed_.wait(lock, [&] { return stopping_ || queue_.size() < capacity_; });
-              if (stopping_) return;
+        std::optional<Shot> shot = capture_->next();
+        while (shot) {
+          std::optional<Shot> following;
+          if (ahead) {
+            try {
+              following = capture_->next();
+            } catch (...) {  // the frames before a damaged one are still delivered
+              deliver(std::move(*shot), start);
+              throw;
             }
+            if (following) shot->next_clock_s = following->clock_s;
+            else shot->last = true;
           }
-          queue_.push_back(std::move(*shot));
-          lock.unlock();
-          changed_.notify_all();
+          if (!deliver(std::move(*shot), start)) return;
+          shot = ahead ? std::move(following) : capture_->next();
         }
       },
       mutex_, changed_, error_, ended_);
+}
+
+bool FrameFeed::deliver(Shot shot, std::chrono::steady_clock::time_point start) {
+  if (realtime_) {  // a recording delivered at the pace it was recorded, as a camera would
+    const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(shot.stamp.timestamp_s));
+    std::unique_lock lock(mutex_);
+    if (changed_.wait_until(lock, due, [&] { return stopping_; })) return false;
+    shot.captured_at = due;  // captured when due, however late this thread woke
+  }
+  if (on_capture_) on_capture_(shot);
+  std::unique_lock lock(mutex_);
+  if (stopping_) return false;
+  ++captured_;
+  if (!first_sequence_) first_sequence_ = shot.stamp.sequence;
+  if (queue_.size() >= capacity_) {
+    if (when_behind_ == WhenBehind::drop_oldest) {
+      queue_.pop_front();
+      ++dropped_;
+    } else {
+      changed_.wait(lock, [&] { return stopping_ || queue_.size() < capacity_; });
+      if (stopping_) return false;
+    }
+  }
+  queue_.push_back(std::move(shot));
+  lock.unlock();
+  changed_.notify_all();
+  return true;
 }
 
 bool FrameFeed::wait_for_frame_or_end(std::unique_lock<std::mutex>& lock, double timeout_s) {
@@ -81,12 +101,6 @@ std::optional<Shot> FrameFeed::next(double timeout_s) {
   lock.unlock();
   changed_.notify_all();
   return shot;
-}
-
-bool FrameFeed::ended(double timeout_s) {
-  std::unique_lock lock(mutex_);
-  if (!wait_for_frame_or_end(lock, timeout_s)) return false;
-  return queue_.empty() && ended_ && !error_;
 }
 
 std::int64_t FrameFeed::captured() const {

@@ -70,6 +70,14 @@ std::optional<ShotPair> StereoFeed::next(double timeout_s) {
   }
 }
 
+std::optional<bool> StereoFeed::last(const ShotPair& pair) const {
+  if (pair.left.last || pair.right.last) return true;
+  const std::optional<double>&left = pair.left.next_clock_s, &right = pair.right.next_clock_s;
+  if (!right_) return left ? std::optional<bool>(false) : std::nullopt;
+  if (left && right && std::abs(*right - *left) * 1000.0 <= max_skew_ms_) return false;
+  return std::nullopt;
+}
+
 std::vector<RefusedPair> StereoFeed::take_refusals() { return std::exchange(refusals_, {}); }
 
 std::int64_t StereoFeed::captured() const { return left_->captured() + (right_ ? right_->captured() : 0); }

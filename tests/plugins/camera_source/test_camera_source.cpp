@@ -222,4 +222,19 @@ TEST_F(CameraSource, FramesLostBehindASlowStageAreCounted) {
   EXPECT_EQ(metric(blocking, "cam.frames_processed"), 39.0);
 }
 
+// Paced as a camera (a frame every 100 ms), a frame's latency runs from
+// when it was due to the chain's end: `done` comes from the frame read
+// ahead, so the source does not hold a frame until the next one is due.
+TEST_F(CameraSource, ARecordingsDoneCostsNoFramePeriodOfLatency) {
+  write_frame_files(dir_.path(), std::vector<cv::Mat>(6, cv::Mat(24, 32, CV_8UC3, cv::Scalar(50, 50, 50))));
+  Pipeline p = load("stages:\n  - id: frames\n    loop:\n      max_iterations: 100\n      until: cam.done\n"
+                    "      stages:\n        - id: cam\n          plugin: camera_source\n"
+                    "          params: {frames: 'frame_{iteration}.png', fps: 10, realtime: true}\n");
+  RunOptions o;
+  o.quiet = true;
+  const RunResult r = run_pipeline(p, o);
+  EXPECT_EQ(metric(r, "cam.frames_processed"), 5.0);
+  EXPECT_LT(metric(r, "cam.latency_p50_ms"), 50.0);
+}
+
 }  // namespace

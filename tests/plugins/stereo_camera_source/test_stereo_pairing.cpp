@@ -90,6 +90,20 @@ TEST_F(StereoPairing, OneCameraEndingEndsThePairs) {
   EXPECT_EQ(metric(r, "cam.pairs_refused"), 0.0);
 }
 
+// Paced as cameras (a pair every 100 ms), `done` comes from the frames read
+// ahead: no pair is held until the next one is due, so its latency is under
+// a frame period.
+TEST_F(StereoPairing, ARecordingsDoneCostsNoFramePeriodOfLatency) {
+  for (const std::string side : {"left", "right"})
+    for (int k = 0; k < 6; ++k)
+      cv::imwrite((dir_ / (side + "_" + std::to_string(k) + ".png")).string(),
+                  side == "left" ? pairs_[k % 4].left : pairs_[k % 4].right);
+  const RunResult r = run("left_frames: 'left_{iteration}.png', right_frames: 'right_{iteration}.png', fps: 10, "
+                          "realtime: true");
+  EXPECT_EQ(metric(r, "cam.frames_processed"), 5.0);
+  EXPECT_LT(metric(r, "cam.latency_p50_ms"), 50.0);
+}
+
 TEST_F(StereoPairing, ASideBySideFrameOfOddWidthIsRefusedAtValidation) {
   cv::Mat odd(360, 641, CV_8UC3, cv::Scalar(90, 90, 90));
   cv::imwrite((dir_ / "both_0.png").string(), odd);

@@ -1,6 +1,7 @@
 // stereo_rectification on a raw pair rendered through two distorted, toed-in
 // cameras: every dot lands where the rectified camera it reports says (same
-// row in both views, Q gives the point back), and its refusals.
+// row in both views, Q gives the point back), and its refusals; the same
+// frame again (a source's reference) is rectified once.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -116,6 +117,22 @@ TEST(StereoRectification, PutsEveryDotOnTheRowAndPixelItsCameraGives) {
   EXPECT_EQ(out->left.size(), cv::Size(640, 360));
   EXPECT_NEAR(out->camera.baseline_mm, std::sqrt(30 * 30 + 0.4 * 0.4 + 0.8 * 0.8), 1e-9);
   expect_dots_where_the_camera_says(*out, r.rig);
+}
+
+TEST(StereoRectification, TheSameFrameAgainIsRectifiedOnce) {
+  Rectified r;
+  auto reference = std::make_shared<StereoFrame>(), other = std::make_shared<StereoFrame>();
+  reference->left = render(r.rig, StereoSide::Left);
+  reference->right = render(r.rig, StereoSide::Right);
+  other->left = reference->left.clone(), other->right = reference->right.clone();
+  StageHarness h("stereo_rectification", {{"sensor", r.sensor}});
+  h.configure();
+  const auto first = h.process_one<ColourStereoFramePtr>({{"frame", StereoFramePtr(reference)}}, "frame");
+  const auto again = h.process_one<ColourStereoFramePtr>({{"frame", StereoFramePtr(reference)}}, "frame");
+  EXPECT_EQ(again, first);  // the rectified pair of last time, not made anew
+  const auto another = h.process_one<ColourStereoFramePtr>({{"frame", StereoFramePtr(other)}}, "frame");
+  EXPECT_NE(another, first);
+  EXPECT_EQ(cv::norm(another->left, first->left, cv::NORM_INF), 0.0);
 }
 
 TEST(StereoRectification, ScalesToTheNetworksInputSize) {

@@ -13,6 +13,9 @@
 namespace touchcloud::imaging {
 
 enum class MatchMethod { BlockMatching, SemiGlobal };
+// OpenCV's StereoSGBM modes: five directions (MODE_SGBM), three (MODE_SGBM_3WAY,
+// faster) or four (MODE_HH4).
+enum class SgbmMode { FivePaths, ThreeWay, FourPaths };
 
 struct MatcherOptions {
   MatchMethod method = MatchMethod::SemiGlobal;
@@ -22,6 +25,12 @@ struct MatcherOptions {
   int uniqueness_ratio = 10;     // percent margin by which the best cost must win
   bool lr_check = true;
   double max_lr_difference_px = 1.0;
+  SgbmMode sgbm_mode = SgbmMode::FivePaths;
+  // The right view's disparities from a second pass on the mirrored pair
+  // (the left-right check against them; Eq. 7 averages them). Without it,
+  // one pass: the check is OpenCV's own within it (disp12MaxDiff,
+  // max_lr_difference_px rounded up) and the right map is all invalid.
+  bool right_pass = true;
   // OpenCV leaves the first min_disparity_px + num_disparities columns of the
   // reference view unmatched (their whole search range would have to lie in
   // the image). With full_width, both images are padded on that side by as
@@ -48,9 +57,18 @@ class DisparityMatcher {
   // InputError naming `where` when they are not, or too small for the block
   // and the disparity range.
   DisparityPair match(const cv::Mat& left, const cv::Mat& right, const std::string& where) const;
+  // Only the pixels of `region` of the left view (its rows, and its columns
+  // with their search range beside them), the rest invalid: a contact's
+  // disparities at a fraction of the whole pair's cost. One pass (the right
+  // map all invalid); InputError naming `where` as match() and when the
+  // options ask for the right pass.
+  DisparityPair match_region(const cv::Mat& left, const cv::Mat& right, cv::Rect region,
+                             const std::string& where) const;
 
  private:
   cv::Mat raw_disparity(const cv::Mat& left, const cv::Mat& right) const;  // CV_16S, 4 fractional bits
+  int within_pass_check() const;
+  void check_pair(const cv::Mat& left, const cv::Mat& right, const std::string& where) const;
 
   MatcherOptions options_;
 };

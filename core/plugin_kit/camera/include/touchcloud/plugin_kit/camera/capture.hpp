@@ -46,8 +46,23 @@ struct Shot {
   // monotonic clock every device on the machine shares), a video's frame
   // time, a recording's timestamp_s as written. Two cameras pair on it.
   double clock_s = 0;
+  // When the frame was captured, on this machine's steady clock: a device's
+  // buffer time, a video paced as a camera its due time (FrameFeed), else
+  // when it was read. The chain's latency counts from here.
   std::chrono::steady_clock::time_point captured_at;
+  // What follows in a recording, read ahead by its capture thread so that a
+  // stage knows it without waiting for the next frame's time: `last` on the
+  // final frame, else the next frame's clock_s. Neither for a camera.
+  bool last = false;
+  std::optional<double> next_clock_s;
 };
+
+// A device frame's capture time from its buffer time (`buffer_ms`, V4L2's
+// monotonic clock, the steady clock's), read at `now`; `now` itself when
+// the buffer time is not on that clock (in the future, or more than a
+// second old).
+std::chrono::steady_clock::time_point device_capture_time(std::chrono::steady_clock::time_point now,
+                                                          double buffer_ms);
 
 // A recording's frame files: a '{iteration}' pattern (0, 1, ... up to the
 // first missing file; frame k at k / fps) or an index.csv that lists them

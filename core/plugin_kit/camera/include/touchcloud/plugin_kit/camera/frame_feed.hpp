@@ -2,9 +2,13 @@
 // from. When processing falls behind a full queue either holds the camera
 // back (block: nothing is lost, for files) or loses its oldest frame (drop
 // oldest: the newest frame is processed, for live cameras); each frame lost
-// is counted.
+// is counted. A recording (a video file, image files) is read one frame
+// ahead, so each frame says whether it is the last; `realtime` delivers its
+// frames at the pace they were recorded, each stamped with the time it was
+// due, as a camera would have captured it.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -33,9 +37,6 @@ class FrameFeed {
   // end of the source. Rethrows the capture thread's error; RunError when
   // nothing comes in time.
   std::optional<Shot> next(double timeout_s);
-  // Whether the source has ended and no frame is left: waits (bounded as
-  // next()) until a frame is queued or the source ends.
-  bool ended(double timeout_s);
   std::int64_t captured() const;
   std::int64_t dropped() const;  // lost from a full queue
   std::optional<std::int64_t> first_sequence() const;  // of the first frame captured
@@ -44,6 +45,9 @@ class FrameFeed {
 
  private:
   void capture_loop();
+  // Queues `shot` (in realtime, at its due time, stamped with it); false
+  // when the feed is stopping.
+  bool deliver(Shot shot, std::chrono::steady_clock::time_point start);
   bool wait_for_frame_or_end(std::unique_lock<std::mutex>& lock, double timeout_s);
 
   std::unique_ptr<Capture> capture_;

@@ -35,6 +35,12 @@ class StereoFeed {
   // camera has ended. InputError when the two frames differ in size.
   std::optional<ShotPair> next(double timeout_s);
 
+  // Whether `pair` is a recording's last, from what its frames read ahead
+  // say (a camera's last frame, or the next frames within the skew: no wait
+  // for them to be due); none when only the next pair can tell (the next
+  // frames too far apart, or cameras that read nothing ahead).
+  std::optional<bool> last(const ShotPair& pair) const;
+
   std::int64_t refused() const { return refused_; }
   // The refused pairs not yet taken (for a report per call).
   std::vector<RefusedPair> take_refusals();

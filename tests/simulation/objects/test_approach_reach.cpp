@@ -1,5 +1,8 @@
 // The object seen along a press from any side (approach_view.hpp) and the
 // reach check of such a touch (reach_check.hpp: refuse_approach).
+#include <algorithm>
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "closed_shape_fixture.hpp"

@@ -26,7 +26,11 @@ Usage (from the repository root, after building):
   benchmarks/closed_objects/make_closed_objects_table.py --out benchmarks/closed_objects \\
       [--seeds 1-5] [--touches 24] [--shapes pebble,torus] [--ranks 2]
 With --ranks N the runs spread over one `mpirun -n N` job (scripts/mpi_launch.py);
-the figures do not depend on it. The sensor is the simulator's ideal one (the
+the figures do not depend on it. With --runs DIR the runs' folders are kept
+in DIR and a run already there is not made again (a seeded run reproduces
+bit for bit, so only its time is the earlier run's): a long table can be
+finished after it was stopped. A run that fails is listed with its error
+and left out of the means; the others are tabulated. The sensor is the simulator's ideal one (the
 closed shapes have no realistic scene).
 """
 import argparse
@@ -78,6 +82,12 @@ def command(args, method, shape, seed, out):
             "--scene", f"sample_clouds/closed_objects/{shape}/{scene}",
             "--set", f"explore.max_iterations={touches}", "--set", "score.metrics=all",
             "--set", f"score.fscore_threshold_mm={args.fscore_mm}"]
+
+
+def run_name(args, shape, method, seed):
+    """A run's folder: named by everything its figures depend on, so a kept one is only taken for the same run."""
+    touches = args.all_sides_touches if METHODS[method][3] else args.touches
+    return f"{shape}-{method}-{touches}touches-seed{seed}-fscore{args.fscore_mm:g}mm"
 
 
 def write_off_table_mesh(shape, path):
@@ -184,6 +194,8 @@ def main():
     parser.add_argument("--shapes", default=",".join(SHAPES), help="of " + ", ".join(SHAPES))
     parser.add_argument("--fscore-mm", type=float, default=2.0, help="F-score and coverage threshold (mm)")
     parser.add_argument("--ranks", type=int, default=1, help="MPI ranks to spread the runs over (mpirun -n N)")
+    parser.add_argument("--runs", help="keep each run's folder here (default: a temporary folder, removed); a run "
+                                       "whose folder already holds its summary.json is not made again")
     args = parser.parse_args()
     try:
         seeds = seed_list(args.seeds)
@@ -203,17 +215,28 @@ def main():
     os.makedirs(args.out, exist_ok=True)
 
     runs = [(shape, key, seed) for shape in shapes for key in methods for seed in seeds]
-    rows, per_touch, series_of = [], {}, {}
+    rows, per_touch, series_of, failures = [], {}, {}, []
     with tempfile.TemporaryDirectory(dir=os.path.abspath(args.out)) as scratch:
-        outs = [os.path.join(scratch, f"{shape}-{i}-{seed}") for i, (shape, _, seed) in enumerate(runs)]
-        run_all([command(args, key, shape, seed, out) for (shape, key, seed), out in zip(runs, outs)],
-                args.ranks, scratch)
+        folder = os.path.abspath(args.runs) if args.runs else scratch
+        outs = [os.path.join(folder, run_name(args, shape, key, seed)) for shape, key, seed in runs]
+        todo = [command(args, key, shape, seed, out) for (shape, key, seed), out in zip(runs, outs)
+                if not os.path.exists(os.path.join(out, "summary.json"))]
+        failed = {tuple(cmd): stderr for cmd, _, stderr in
+                  (run_all(todo, args.ranks, scratch, keep_going=True) if todo else [])}
         off_table, on_table_share = {}, {}
         for shape in shapes:
             off_table[shape] = os.path.join(scratch, f"{shape}_off_table.ply")
             on_table_share[shape] = write_off_table_mesh(shape, off_table[shape])
         for (shape, key, seed), out in zip(runs, outs):
             method = METHODS[key][0]
+            stderr = failed.get(tuple(command(args, key, shape, seed, out)))
+            if stderr is not None:  # recorded and left out of the means
+                lines = stderr.strip().splitlines() or ["(no message)"]
+                why = next((l for l in lines if l.startswith("touchcloud: error: ")), lines[-1])
+                why = why.removeprefix("touchcloud: error: ")
+                failures.append({"shape": shape, "method": method, "seed": seed, "failure": why})
+                rows.append({"shape": shape, "method": method, "seed": seed, "failure": why})
+                continue
             final, series = read_run(out)
             final["fscore_off_table"] = off_table_fscore(args, shape, out, off_table[shape])
             rows.append({"shape": shape, "method": method, "seed": seed, **final})
@@ -226,7 +249,7 @@ def main():
     names = [m for m, _, _ in METRICS]
     extra = ["fscore_off_table", "refused_touches"]
     with open(os.path.join(args.out, "runs.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["shape", "method", "seed", "touches"] + names + extra + ["wall_time_s"])
+        w = csv.DictWriter(f, fieldnames=["shape", "method", "seed", "touches"] + names + extra + ["wall_time_s", "failure"])
         w.writeheader()
         w.writerows(rows)
     with open(os.path.join(args.out, "curves.csv"), "w", newline="") as f:
@@ -234,7 +257,9 @@ def main():
         w.writerow(["shape", "method", "seed", "touch"] + names)
         for (shape, key, seed) in runs:
             method = METHODS[key][0]
-            series = series_of[(shape, method, seed)]
+            series = series_of.get((shape, method, seed))
+            if series is None:  # failed
+                continue
             for t in range(max(len(v) for v in series.values())):
                 w.writerow([shape, method, seed, t + 1] +
                            [series[n][t] if t < len(series[n]) else "" for n in names])
@@ -242,8 +267,9 @@ def main():
     for shape in shapes:
         for key in methods:
             method = METHODS[key][0]
-            mine = [r for r in rows if r["shape"] == shape and r["method"] == method]
-            row = {"shape": shape, "method": method, "seeds": len(mine), "on_table_share": on_table_share[shape]}
+            mine = [r for r in rows if r["shape"] == shape and r["method"] == method and "failure" not in r]
+            row = {"shape": shape, "method": method, "seeds": len(mine), "on_table_share": on_table_share[shape],
+                   "failed": sum(1 for f in failures if f["shape"] == shape and f["method"] == method)}
             for name in names + extra + ["touches", "wall_time_s"]:
                 row[name], row[name + "_sd"] = mean_sd([r[name] for r in mine])
             summary.append(row)
@@ -276,6 +302,9 @@ def main():
                     " | ".join(fmt(r, n, d) for n, _, d in METRICS) +
                     f" | {fmt(r, 'fscore_off_table', 3)} | {fmt(r, 'refused_touches', 1)} | "
                     f"{fmt(r, 'wall_time_s', 1)} |\n")
+        if failures:
+            f.write("\nFailed runs (left out of the means above; '-' where every seed failed):\n\n")
+            f.writelines(f"- {x['shape']}, {x['method']}, seed {x['seed']}: {x['failure']}\n" for x in failures)
 
 
 if __name__ == "__main__":

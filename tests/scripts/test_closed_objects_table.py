@@ -55,3 +55,25 @@ def test_bad_arguments_are_refused_before_any_run(tmp_path):
         r = table(tmp_path / "out", *args)
         assert r.returncode == 2 and says in r.stderr, (args, r.stderr)
     assert not (tmp_path / "out").exists()
+
+
+def test_a_failed_run_is_listed_and_a_kept_run_is_not_made_again(tmp_path):
+    runs = tmp_path / "runs"
+    first = table(tmp_path / "first", "--shapes", "pebble", "--touches", "2", "--methods", "height_field",
+                  "--runs", str(runs))
+    assert first.returncode == 0, first.stderr
+    # A touchcloud whose runs all fail: the kept height-field run is tabulated
+    # as before, the implicit surface's run fails and is listed, not averaged.
+    failing = tmp_path / "touchcloud"
+    failing.write_text(f'#!/bin/sh\nif [ "$1" = run ]; then echo "touchcloud: error: no run here" >&2; exit 2; fi\n'
+                       f'exec "{CLI}" "$@"\n')
+    failing.chmod(0o755)
+    second = table(tmp_path / "second", "--shapes", "pebble", "--touches", "2", "--methods", "height_field,implicit",
+                   "--runs", str(runs), "--touchcloud", str(failing))
+    assert second.returncode == 0, second.stderr
+    before, after = rows(tmp_path / "first/results.csv"), rows(tmp_path / "second/results.csv")
+    assert [(s["seeds"], s["failed"]) for s in after] == [("1", "0"), ("0", "1")]
+    assert after[0]["chamfer_est_to_gt"] == before[0]["chamfer_est_to_gt"] and after[1]["chamfer_est_to_gt"] == ""
+    assert "- pebble, implicit surface (GPIS, max variance), seed 1: no run here" in \
+        (tmp_path / "second/results.md").read_text()
+    assert [r["failure"] for r in rows(tmp_path / "second/runs.csv")] == ["", "no run here"]

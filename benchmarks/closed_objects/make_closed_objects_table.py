@@ -221,6 +221,7 @@ def main():
         outs = [os.path.join(folder, run_name(args, shape, key, seed)) for shape, key, seed in runs]
         todo = [command(args, key, shape, seed, out) for (shape, key, seed), out in zip(runs, outs)
                 if not os.path.exists(os.path.join(out, "summary.json"))]
+        kept = len(runs) - len(todo)
         failed = {tuple(cmd): stderr for cmd, _, stderr in
                   (run_all(todo, args.ranks, scratch, keep_going=True) if todo else [])}
         off_table, on_table_share = {}, {}
@@ -293,7 +294,9 @@ def main():
                 f"F-score off the table: the final surface against the object without the faces resting on the "
                 f"table (their share of the area: {table_share}), which no touch can reach. Refused: touches whose "
                 f"first choice the reach check refused (side_touch). Per-touch figures: curves.csv"
-                f"{' and curves.png' if plotted else ''}."
+                f"{' and curves.png' if plotted else ''}." +
+                (f" {kept} of {len(runs)} runs were kept in --runs from an earlier invocation of the same command "
+                 f"(a seeded run reproduces bit for bit; their times are those runs')." if kept else "") +
                 "\n\n| shape | method | touches | " + " | ".join(t for _, t, _ in METRICS) +
                 " | F-score off the table | refused | time (s) |\n"
                 "|---|---|---|" + "---|" * len(METRICS) + "---|---|---|\n")

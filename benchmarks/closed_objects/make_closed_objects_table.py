@@ -27,9 +27,10 @@ Usage (from the repository root, after building):
       [--seeds 1-5] [--touches 24] [--shapes pebble,torus] [--ranks 2]
 With --ranks N the runs spread over one `mpirun -n N` job (scripts/mpi_launch.py);
 the figures do not depend on it. With --runs DIR the runs' folders are kept
-in DIR and a run already there is not made again (a seeded run reproduces
-bit for bit, so only its time is the earlier run's): a long table can be
-finished after it was stopped. A run that fails is listed with its error
+in DIR and a run already there (its summary.json, or the failure.txt of a
+run that failed) is not made again (a seeded run reproduces bit for bit, so
+only its time is the earlier run's): a long table can be finished after it
+was stopped. A run that fails is listed with its error
 and left out of the means; the others are tabulated. The sensor is the simulator's ideal one (the
 closed shapes have no realistic scene).
 """
@@ -195,7 +196,8 @@ def main():
     parser.add_argument("--fscore-mm", type=float, default=2.0, help="F-score and coverage threshold (mm)")
     parser.add_argument("--ranks", type=int, default=1, help="MPI ranks to spread the runs over (mpirun -n N)")
     parser.add_argument("--runs", help="keep each run's folder here (default: a temporary folder, removed); a run "
-                                       "whose folder already holds its summary.json is not made again")
+                                       "whose folder already holds its summary.json (or failure.txt) is not made "
+                                       "again")
     args = parser.parse_args()
     try:
         seeds = seed_list(args.seeds)
@@ -219,19 +221,23 @@ def main():
     with tempfile.TemporaryDirectory(dir=os.path.abspath(args.out)) as scratch:
         folder = os.path.abspath(args.runs) if args.runs else scratch
         outs = [os.path.join(folder, run_name(args, shape, key, seed)) for shape, key, seed in runs]
-        todo = [command(args, key, shape, seed, out) for (shape, key, seed), out in zip(runs, outs)
-                if not os.path.exists(os.path.join(out, "summary.json"))]
+        made = lambda out: any(os.path.exists(os.path.join(out, f)) for f in ("summary.json", "failure.txt"))
+        todo = [command(args, key, shape, seed, out) for (shape, key, seed), out in zip(runs, outs) if not made(out)]
         kept = len(runs) - len(todo)
-        failed = {tuple(cmd): stderr for cmd, _, stderr in
-                  (run_all(todo, args.ranks, scratch, keep_going=True) if todo else [])}
+        for cmd, _, stderr in (run_all(todo, args.ranks, scratch, keep_going=True) if todo else []):
+            out = cmd[cmd.index("--out") + 1]
+            os.makedirs(out, exist_ok=True)
+            with open(os.path.join(out, "failure.txt"), "w") as f:  # a seeded run fails again: kept as made
+                f.write(stderr)
         off_table, on_table_share = {}, {}
         for shape in shapes:
             off_table[shape] = os.path.join(scratch, f"{shape}_off_table.ply")
             on_table_share[shape] = write_off_table_mesh(shape, off_table[shape])
         for (shape, key, seed), out in zip(runs, outs):
             method = METHODS[key][0]
-            stderr = failed.get(tuple(command(args, key, shape, seed, out)))
-            if stderr is not None:  # recorded and left out of the means
+            if not os.path.exists(os.path.join(out, "summary.json")):  # failed: recorded, left out of the means
+                with open(os.path.join(out, "failure.txt")) as f:
+                    stderr = f.read()
                 lines = stderr.strip().splitlines() or ["(no message)"]
                 why = next((l for l in lines if l.startswith("touchcloud: error: ")), lines[-1])
                 why = why.removeprefix("touchcloud: error: ")

@@ -77,3 +77,5 @@ def test_a_failed_run_is_listed_and_a_kept_run_is_not_made_again(tmp_path):
     assert "- pebble, implicit surface (GPIS, max variance), seed 1: no run here" in \
         (tmp_path / "second/results.md").read_text()
     assert [r["failure"] for r in rows(tmp_path / "second/runs.csv")] == ["", "no run here"]
+    # The failure is kept with the run: a seeded run would fail again.
+    assert "no run here" in next(runs.glob("pebble-implicit-*/failure.txt")).read_text()

@@ -59,22 +59,28 @@ def run_each(commands, ranks, parent):
     return failed
 
 
-def run_all(commands, ranks, parent, noun="runs"):
+def run_all(commands, ranks, parent, noun="runs", keep_going=False):
     """Runs every command: one after the other (counting them on stderr), or
     spread over one `mpirun -n RANKS` job (run_each) when ranks > 1; the
-    results do not depend on which. RuntimeError naming the first failure."""
+    results do not depend on which. RuntimeError naming the first failure,
+    or with keep_going every command runs and the failures are returned as
+    run_each returns them."""
     if ranks > 1:
         failed = run_each(commands, ranks, parent)
-        if failed:
-            cmd, status, stderr = failed[0]
-            raise RuntimeError(f"{len(failed)} {noun} failed; {' '.join(cmd)} ({status}):\n{stderr}")
-        return
-    for i, cmd in enumerate(commands, 1):
-        done = subprocess.run(cmd, capture_output=True, text=True)
-        if done.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
-        print(f"\r{i}/{len(commands)} {noun}", end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
+    else:
+        failed = []
+        for i, cmd in enumerate(commands, 1):
+            done = subprocess.run(cmd, capture_output=True, text=True)
+            if done.returncode != 0:
+                if not keep_going:
+                    raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
+                failed.append((cmd, done.returncode, done.stderr))
+            print(f"\r{i}/{len(commands)} {noun}", end="", file=sys.stderr, flush=True)
+        print(file=sys.stderr)
+    if failed and not keep_going:
+        cmd, status, stderr = failed[0]
+        raise RuntimeError(f"{len(failed)} {noun} failed; {' '.join(cmd)} ({status}):\n{stderr}")
+    return failed
 
 
 def _run_claimed(folder):

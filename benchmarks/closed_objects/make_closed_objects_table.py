@@ -1,13 +1,19 @@
 #!/usr/bin/python3
-"""The shipped closed shapes (sample_clouds/closed_objects/) touched from
-above, reconstructed two ways with the same touch budget and seeds: the
-height-field GP of the main job (pipelines/fox_mask_active.yaml, its
-max-variance choice) and the implicit surface (pipelines/closed_object_active.yaml,
-its variance as a press from above meets it). Each run is scored against the
-whole closed mesh after every touch: Eq. 11 (estimate -> object, the mean
-chamfer), its 95th percentile, Hausdorff, completeness (object -> estimate),
-F-score and coverage at --fscore-mm, of the whole object and of what a press
-from above sees (visible coverage).
+"""The shipped closed shapes (sample_clouds/closed_objects/) reconstructed
+by four methods with the same seeds: touched from above (at most --touches)
+as the height-field GP of the main job (pipelines/fox_mask_active.yaml, its
+max-variance choice) and as the implicit surface
+(pipelines/closed_object_active.yaml, its variance as a press from above
+meets it); touched from any side (at most --all-sides-touches) as the
+implicit surface with side_touch's choice (pipelines/closed_object_all_sides.yaml),
+by the Palm 2.0's 65 mm dome (scene.yaml) and by a 20 mm fingertip dome
+(scene_fingertip.yaml). Each run is scored against the whole closed mesh
+after every touch: Eq. 11 (estimate -> object, the mean chamfer), its 95th
+percentile, Hausdorff, completeness (object -> estimate), F-score and
+coverage at --fscore-mm, of the whole object and of what a press from above
+sees (visible coverage). The final surface is also scored (touchcloud score)
+against the object without the faces resting on the table, which no touch
+can reach: F-score off the table.
 
 Writes into --out:
   runs.csv     one row per shape, method and seed: the final figures
@@ -20,15 +26,23 @@ Usage (from the repository root, after building):
   benchmarks/closed_objects/make_closed_objects_table.py --out benchmarks/closed_objects \\
       [--seeds 1-5] [--touches 24] [--shapes pebble,torus] [--ranks 2]
 With --ranks N the runs spread over one `mpirun -n N` job (scripts/mpi_launch.py);
-the figures do not depend on it. The sensor is the simulator's ideal one (the
+the figures do not depend on it. With --runs DIR the runs' folders are kept
+in DIR and a run already there (its summary.json, or the failure.txt of a
+run that failed) is not made again (a seeded run reproduces bit for bit, so
+only its time is the earlier run's): a long table can be finished after it
+was stopped. A run that fails is listed with its error
+and left out of the means; the others are tabulated. The sensor is the simulator's ideal one (the
 closed shapes have no realistic scene).
 """
 import argparse
 import csv
 import json
 import os
+import math
 import platform
+import re
 import statistics
+import subprocess
 import sys
 import tempfile
 
@@ -36,8 +50,15 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from mpi_launch import run_all  # noqa: E402
 
 SHAPES = ["sphere", "pebble", "step", "torus", "mug"]
-PIPELINES = {"height field (GP, max variance)": "pipelines/fox_mask_active.yaml",
-             "implicit surface (GPIS, max variance)": "pipelines/closed_object_active.yaml"}
+# key: (method as the table names it, pipeline, scene file in the shape's folder, touched from any side)
+METHODS = {
+    "height_field": ("height field (GP, max variance)", "pipelines/fox_mask_active.yaml", "scene.yaml", False),
+    "implicit": ("implicit surface (GPIS, max variance)", "pipelines/closed_object_active.yaml", "scene.yaml", False),
+    "all_sides": ("implicit surface, all sides (GPIS, side_touch)", "pipelines/closed_object_all_sides.yaml",
+                  "scene.yaml", True),
+    "all_sides_fingertip": ("implicit surface, all sides, 20 mm fingertip", "pipelines/closed_object_all_sides.yaml",
+                            "scene_fingertip.yaml", True),
+}
 # summary.json metric (score.<name>), column title, decimals in results.md
 METRICS = [("chamfer_est_to_gt", "Eq. 11", 3), ("p95_est_to_gt", "p95", 2), ("hausdorff", "Hausdorff", 1),
            ("chamfer_gt_to_est", "completeness", 2), ("fscore", "F-score", 3), ("recall", "coverage", 3),
@@ -55,18 +76,69 @@ def seed_list(text):
     return seeds
 
 
-def command(args, pipeline, shape, seed, out):
+def command(args, method, shape, seed, out):
+    _, pipeline, scene, all_sides = METHODS[method]
+    touches = args.all_sides_touches if all_sides else args.touches
     return [args.touchcloud, "run", pipeline, "--seed", str(seed), "--quiet", "--out", out,
-            "--scene", f"sample_clouds/closed_objects/{shape}/scene.yaml",
-            "--set", f"explore.max_iterations={args.touches}", "--set", "score.metrics=all",
+            "--scene", f"sample_clouds/closed_objects/{shape}/{scene}",
+            "--set", f"explore.max_iterations={touches}", "--set", "score.metrics=all",
             "--set", f"score.fscore_threshold_mm={args.fscore_mm}"]
+
+
+def run_name(args, shape, method, seed):
+    """A run's folder: named by everything its figures depend on, so a kept one is only taken for the same run."""
+    touches = args.all_sides_touches if METHODS[method][3] else args.touches
+    return f"{shape}-{method}-{touches}touches-seed{seed}-fscore{args.fscore_mm:g}mm"
+
+
+def write_off_table_mesh(shape, path):
+    """The shape's mesh placed as its scene places it (a translation), less
+    the triangles lying on the table (every corner at z = 0): what a touch
+    could reach at best. Returns the share of the area left out."""
+    folder = f"sample_clouds/closed_objects/{shape}"
+    with open(f"{folder}/scene.yaml") as f:
+        xyz = re.search(r"pose: \{xyz_mm: \[([^\]]*)\], rpy_deg: \[0, 0, 0\]\}", f.read())
+    if not xyz:
+        raise SystemExit(f"{folder}/scene.yaml: the object's pose is not a translation; cannot place its mesh here")
+    offset = [float(v) for v in xyz.group(1).split(",")]
+    with open(f"{folder}/{shape}.ply") as f:
+        lines = f.read().split("\n")
+    count = {l.split()[1]: int(l.split()[2]) for l in lines if l.startswith("element ")}
+    start = lines.index("end_header") + 1
+    verts = [[float(v) + o for v, o in zip(l.split(), offset)] for l in lines[start:start + count["vertex"]]]
+    faces = [l.split()[1:4] for l in lines[start + count["vertex"]:start + count["vertex"] + count["face"]]]
+    area = lambda f: 0.5 * math.dist((0, 0, 0), cross(*[[verts[int(f[k])][i] - verts[int(f[0])][i] for i in range(3)]
+                                                          for k in (1, 2)]))
+    on_table = [f for f in faces if all(abs(verts[int(i)][2]) < 1e-6 for i in f)]
+    kept = [f for f in faces if f not in on_table] if on_table else faces
+    with open(path, "w") as f:
+        f.write(f"ply\nformat ascii 1.0\nelement vertex {len(verts)}\nproperty float x\nproperty float y\n"
+                f"property float z\nelement face {len(kept)}\nproperty list uchar int vertex_indices\nend_header\n")
+        f.writelines("%.4f %.4f %.4f\n" % tuple(v) for v in verts)
+        f.writelines(f"3 {' '.join(t)}\n" for t in kept)
+    return sum(map(area, on_table)) / sum(map(area, faces))
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def off_table_fscore(args, shape, out, gt):
+    """F-score of the run's final surface against the object off the table."""
+    done = subprocess.run([args.touchcloud, "score", os.path.join(out, f"{shape}_surface.pcd"), "--gt", gt, "--json",
+                           "--metrics", "fscore", "--fscore-threshold", str(args.fscore_mm),
+                           "--samples", "100000", "--threads", "1"], capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"touchcloud score {out} failed ({done.returncode}):\n{done.stderr}")
+    return json.loads(done.stdout)[0]["metrics"]["fscore"]
 
 
 def read_run(out):
     """The final figures and the per-touch series of one run."""
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
-    final = {"touches": s["loops"]["explore"]["iterations"], "wall_time_s": s["wall_time_s"]}
+    final = {"touches": s["loops"]["explore"]["iterations"], "wall_time_s": s["wall_time_s"],
+             "refused_touches": s["metrics"].get("plan.refused_touches", {}).get("value")}
     series = {}
     for name, _, _ in METRICS:
         m = s["metrics"].get("score." + name)
@@ -94,7 +166,8 @@ def plot(args, curves):
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     for (shape, method), by_touch in curves.items():
         touches = sorted(by_touch)
-        style = "-" if method.startswith("implicit") else "--"  # a colour per shape, a line style per method
+        # a colour per shape, a line style per method
+        style = (":", "--", "-.", "-")[[name for name, _, _, _ in METHODS.values()].index(method)]
         for ax, name in zip(axes, ("chamfer_est_to_gt", "fscore")):
             ax.plot(touches, [statistics.fmean(by_touch[t][name]) for t in touches], style,
                     color=f"C{SHAPES.index(shape)}", label=f"{shape}, {method.split(' (')[0]}")
@@ -105,7 +178,7 @@ def plot(args, curves):
         ax.set_xlabel("touches")
         ax.grid(True, alpha=0.3)
     axes[1].legend(fontsize=7)
-    fig.suptitle(f"Closed shapes touched from above (mean over seeds {args.seeds_text})")
+    fig.suptitle(f"Closed shapes touched from above and from any side (mean over seeds {args.seeds_text})")
     fig.tight_layout()
     fig.savefig(os.path.join(args.out, "curves.png"), dpi=120)
     return True
@@ -115,11 +188,16 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--out", required=True)
     parser.add_argument("--touchcloud", default="build/bin/touchcloud")
-    parser.add_argument("--touches", type=int, default=24)
+    parser.add_argument("--touches", type=int, default=24, help="touches from above (default 24)")
+    parser.add_argument("--all-sides-touches", type=int, default=60, help="touches from any side (default 60)")
+    parser.add_argument("--methods", default=",".join(METHODS), help="of " + ", ".join(METHODS))
     parser.add_argument("--seeds", default="1", help="e.g. 1-5 or 1,3 (default 1)")
     parser.add_argument("--shapes", default=",".join(SHAPES), help="of " + ", ".join(SHAPES))
     parser.add_argument("--fscore-mm", type=float, default=2.0, help="F-score and coverage threshold (mm)")
     parser.add_argument("--ranks", type=int, default=1, help="MPI ranks to spread the runs over (mpirun -n N)")
+    parser.add_argument("--runs", help="keep each run's folder here (default: a temporary folder, removed); a run "
+                                       "whose folder already holds its summary.json (or failure.txt) is not made "
+                                       "again")
     args = parser.parse_args()
     try:
         seeds = seed_list(args.seeds)
@@ -130,19 +208,44 @@ def main():
     unknown = [s for s in shapes if s not in SHAPES]
     if unknown:
         parser.error(f"--shapes: no shape {', '.join(unknown)} (shipped: {', '.join(SHAPES)})")
-    if args.touches < 1:
-        parser.error("--touches must be at least 1")
+    methods = args.methods.split(",")
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown:
+        parser.error(f"--methods: no method {', '.join(unknown)} (of {', '.join(METHODS)})")
+    if args.touches < 1 or args.all_sides_touches < 1:
+        parser.error("--touches and --all-sides-touches must be at least 1")
     os.makedirs(args.out, exist_ok=True)
 
-    runs = [(shape, method, pipeline, seed) for shape in shapes for method, pipeline in PIPELINES.items()
-            for seed in seeds]
-    rows, per_touch, series_of = [], {}, {}
+    runs = [(shape, key, seed) for shape in shapes for key in methods for seed in seeds]
+    rows, per_touch, series_of, failures = [], {}, {}, []
     with tempfile.TemporaryDirectory(dir=os.path.abspath(args.out)) as scratch:
-        outs = [os.path.join(scratch, f"{shape}-{i}-{seed}") for i, (shape, _, _, seed) in enumerate(runs)]
-        run_all([command(args, pipeline, shape, seed, out) for (shape, _, pipeline, seed), out in zip(runs, outs)],
-                args.ranks, scratch)
-        for (shape, method, _, seed), out in zip(runs, outs):
+        folder = os.path.abspath(args.runs) if args.runs else scratch
+        outs = [os.path.join(folder, run_name(args, shape, key, seed)) for shape, key, seed in runs]
+        made = lambda out: any(os.path.exists(os.path.join(out, f)) for f in ("summary.json", "failure.txt"))
+        todo = [command(args, key, shape, seed, out) for (shape, key, seed), out in zip(runs, outs) if not made(out)]
+        kept = len(runs) - len(todo)
+        for cmd, _, stderr in (run_all(todo, args.ranks, scratch, keep_going=True) if todo else []):
+            out = cmd[cmd.index("--out") + 1]
+            os.makedirs(out, exist_ok=True)
+            with open(os.path.join(out, "failure.txt"), "w") as f:  # a seeded run fails again: kept as made
+                f.write(stderr)
+        off_table, on_table_share = {}, {}
+        for shape in shapes:
+            off_table[shape] = os.path.join(scratch, f"{shape}_off_table.ply")
+            on_table_share[shape] = write_off_table_mesh(shape, off_table[shape])
+        for (shape, key, seed), out in zip(runs, outs):
+            method = METHODS[key][0]
+            if not os.path.exists(os.path.join(out, "summary.json")):  # failed: recorded, left out of the means
+                with open(os.path.join(out, "failure.txt")) as f:
+                    stderr = f.read()
+                lines = stderr.strip().splitlines() or ["(no message)"]
+                why = next((l for l in lines if l.startswith("touchcloud: error: ")), lines[-1])
+                why = why.removeprefix("touchcloud: error: ")
+                failures.append({"shape": shape, "method": method, "seed": seed, "failure": why})
+                rows.append({"shape": shape, "method": method, "seed": seed, "failure": why})
+                continue
             final, series = read_run(out)
+            final["fscore_off_table"] = off_table_fscore(args, shape, out, off_table[shape])
             rows.append({"shape": shape, "method": method, "seed": seed, **final})
             by_touch = per_touch.setdefault((shape, method), {})
             for name, values in series.items():
@@ -151,24 +254,30 @@ def main():
             series_of[(shape, method, seed)] = series
 
     names = [m for m, _, _ in METRICS]
+    extra = ["fscore_off_table", "refused_touches"]
     with open(os.path.join(args.out, "runs.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["shape", "method", "seed", "touches"] + names + ["wall_time_s"])
+        w = csv.DictWriter(f, fieldnames=["shape", "method", "seed", "touches"] + names + extra + ["wall_time_s", "failure"])
         w.writeheader()
         w.writerows(rows)
     with open(os.path.join(args.out, "curves.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["shape", "method", "seed", "touch"] + names)
-        for (shape, method, _, seed) in runs:
-            series = series_of[(shape, method, seed)]
+        for (shape, key, seed) in runs:
+            method = METHODS[key][0]
+            series = series_of.get((shape, method, seed))
+            if series is None:  # failed
+                continue
             for t in range(max(len(v) for v in series.values())):
                 w.writerow([shape, method, seed, t + 1] +
                            [series[n][t] if t < len(series[n]) else "" for n in names])
     summary = []
     for shape in shapes:
-        for method in PIPELINES:
-            mine = [r for r in rows if r["shape"] == shape and r["method"] == method]
-            row = {"shape": shape, "method": method, "seeds": len(mine)}
-            for name in names + ["touches", "wall_time_s"]:
+        for key in methods:
+            method = METHODS[key][0]
+            mine = [r for r in rows if r["shape"] == shape and r["method"] == method and "failure" not in r]
+            row = {"shape": shape, "method": method, "seeds": len(mine), "on_table_share": on_table_share[shape],
+                   "failed": sum(1 for f in failures if f["shape"] == shape and f["method"] == method)}
+            for name in names + extra + ["touches", "wall_time_s"]:
                 row[name], row[name + "_sd"] = mean_sd([r[name] for r in mine])
             summary.append(row)
     with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
@@ -178,20 +287,33 @@ def main():
 
     plotted = plot(args, per_touch)
     fmt = lambda r, n, d: "-" if r[n] is None else f"{r[n]:.{d}f} ± {r[n + '_sd']:.{d}f}"
+    table_share = ", ".join(f"{shape} {on_table_share[shape]:.3f}" for shape in shapes)
     with open(os.path.join(args.out, "results.md"), "w") as f:
-        f.write(f"# Closed shapes touched from above: height field and implicit surface\n\n"
+        f.write(f"# Closed shapes: touched from above and from any side\n\n"
                 f"Made by `benchmarks/closed_objects/make_closed_objects_table.py --out {args.out} "
-                f"--seeds {args.seeds} --touches {args.touches}` (at most {args.touches} touches, fewer where "
-                f"no reachable cell is left; the simulator's ideal sensor) on {platform.machine()} Linux with "
-                f"{os.cpu_count()} cores. Mean ± sd over {len(seeds)} seed(s). Distances in mm against the "
-                f"whole closed mesh; F-score and coverage at {args.fscore_mm:g} mm; visible coverage is the "
-                f"share of what a press from above can see. Per-touch figures: curves.csv"
-                f"{' and curves.png' if plotted else ''}."
-                "\n\n| shape | method | touches | " + " | ".join(t for _, t, _ in METRICS) + " | time (s) |\n"
-                "|---|---|---|" + "---|" * len(METRICS) + "---|\n")
+                f"--seeds {args.seeds} --touches {args.touches} --all-sides-touches {args.all_sides_touches} "
+                f"--shapes {','.join(shapes)} --methods {','.join(methods)}` (at most {args.touches} touches from "
+                f"above, {args.all_sides_touches} from any side, fewer where nothing reachable is left; the "
+                f"simulator's ideal sensor) on {platform.machine()} Linux with {os.cpu_count()} cores. Mean ± sd "
+                f"over {len(seeds)} seed(s). Distances in mm against the whole closed mesh; F-score and coverage at "
+                f"{args.fscore_mm:g} mm; visible coverage is the share of what a press from above can see. "
+                f"F-score off the table: the final surface against the object without the faces resting on the "
+                f"table (their share of the area: {table_share}), which no touch can reach. Refused: touches whose "
+                f"first choice the reach check refused (side_touch). Per-touch figures: curves.csv"
+                f"{' and curves.png' if plotted else ''}." +
+                (f" {kept} of {len(runs)} runs were kept in --runs from an earlier invocation of the same command "
+                 f"(a seeded run reproduces bit for bit; their times are those runs')." if kept else "") +
+                "\n\n| shape | method | touches | " + " | ".join(t for _, t, _ in METRICS) +
+                " | F-score off the table | refused | time (s) |\n"
+                "|---|---|---|" + "---|" * len(METRICS) + "---|---|---|\n")
         for r in summary:
             f.write(f"| {r['shape']} | {r['method']} | {fmt(r, 'touches', 1)} | " +
-                    " | ".join(fmt(r, n, d) for n, _, d in METRICS) + f" | {fmt(r, 'wall_time_s', 1)} |\n")
+                    " | ".join(fmt(r, n, d) for n, _, d in METRICS) +
+                    f" | {fmt(r, 'fscore_off_table', 3)} | {fmt(r, 'refused_touches', 1)} | "
+                    f"{fmt(r, 'wall_time_s', 1)} |\n")
+        if failures:
+            f.write("\nFailed runs (left out of the means above; '-' where every seed failed):\n\n")
+            f.writelines(f"- {x['shape']}, {x['method']}, seed {x['seed']}: {x['failure']}\n" for x in failures)
 
 
 if __name__ == "__main__":

@@ -2,13 +2,20 @@
 // implicit surface (gpis_surface's `implicit` and `cloud`). A space-filling
 // start first: straight down, then start_touches - 1 approaches start_tilt_deg
 // from the vertical, evenly round it, each aimed at the centre of the scene's
-// object (or beside it where the centre cannot be reached). Then the candidate contacts on the predicted surface, best first
-// by the variance their press would take (side_choice.hpp), the
-// palm pressing against the surface's normal. Every touch is checked against
-// the scene's object before it is made (reach_check.hpp: refuse_approach):
-// one whose gel would meet the table or the object on its way, or that the
-// robot's tilt limit excludes, is refused with its reason and counted, and
-// the next best is taken.
+// object (or beside it where the centre cannot be reached). Then the
+// candidate contacts on the predicted surface, best first by the variance
+// their press would take (side_choice.hpp), the palm pressing against the
+// surface's normal. Every touch is checked against the scene's object before
+// it is made (reach_check.hpp: refuse_approach): one whose gel would meet the
+// table or the object on its way, or that the robot's tilt limit excludes, is
+// refused with its reason and the next best is taken. A touch counts as
+// refused when the planner's first choice was (once per touch, by that
+// choice's reason); every candidate checked and refused is counted apart.
+//
+// On a turntable the planner works in the object's own frame (the frame the
+// simulator reports touches in, and the model's): the table does not move
+// under a turn about the vertical, so the reach check is the same there, and
+// the chosen approach is turned with the object for the touch it is made in.
 #include <array>
 #include <sstream>
 
@@ -30,7 +37,9 @@ class SideTouch final : public Stage {
   scoring::TriangleMesh object_;  // the scene's object, placed: what the reach check meets
   Eigen::Vector3d centre_mm_ = Eigen::Vector3d::Zero();
   double aim_step_mm_ = 0;  // the start's aims beside the centre: half the object's largest half-extent
-  std::array<long, 4> refused_{};  // by ReachRefusal
+  std::optional<simulation::TurntableSpec> turntable_;
+  std::array<long, 4> refused_{};  // touches whose first choice was refused, by that choice's ReachRefusal
+  long refused_candidates_ = 0;    // every approach checked and refused
   int calls_ = 0;
   std::size_t next_start_ = 0;
 
@@ -62,20 +71,23 @@ class SideTouch final : public Stage {
                                         "points on its zero level set (wire fit.cloud@previous): the candidates");
     ports.output<TouchTarget>("target", "the next touch: its approach frame in the base frame, (0, 0) in it");
     ports.output<bool>("done", "true when no candidate can be reached: end the loop with `until: plan.done`");
-    ports.metric("target_x_mm", "mm", "x of the chosen contact (or the start's aim), base frame")
+    ports.metric("target_x_mm", "mm", "x of the chosen contact (or the start's aim), the object's frame")
         .role(MetricRole::touch_x_mm);
-    ports.metric("target_y_mm", "mm", "y of the chosen contact (or the start's aim), base frame")
+    ports.metric("target_y_mm", "mm", "y of the chosen contact (or the start's aim), the object's frame")
         .role(MetricRole::touch_y_mm);
-    ports.metric("target_z_mm", "mm", "z of the chosen contact (or the start's aim), base frame");
+    ports.metric("target_z_mm", "mm", "z of the chosen contact (or the start's aim), the object's frame");
     ports.metric("approach_tilt_deg", "deg", "the chosen approach's angle from straight down");
     ports.metric("chosen_variance", "mm^2", "variance of the signed distance at the chosen contact");
     ports.metric("footprint_variance", "mm^2", "summed variance of the candidates in the chosen press's patch");
-    ports.metric("refused_touches", "touches", "touches refused before they were made (reach), all reasons")
+    ports.metric("refused_touches", "touches",
+                 "touches whose first choice was refused before it was made (reach) and another taken, all reasons")
         .final().lower_is_better();
     for (int r = 0; r < 4; ++r) {
       const std::string reason = simulation::to_string(static_cast<simulation::ReachRefusal>(r));
-      ports.metric("refused_" + reason, "touches", "touches refused before they were made: " + reason).final();
+      ports.metric("refused_" + reason, "touches", "touches whose first choice was refused: " + reason).final();
     }
+    ports.metric("refused_candidates", "approaches",
+                 "every approach checked and refused, the alternatives tried after a first choice included").final();
     ports.metric("touches_planned", "touches", "touches this stage chose").final();
   }
   void on_check(RunContext&) override {
@@ -84,8 +96,7 @@ class SideTouch final : public Stage {
     if (scene.object.kind != ObjectKind::Mesh)
       throw ParameterError("scene", "its object is " + std::string(to_string(scene.object.kind)) +
                                         ": touches from any side need a mesh object");
-    if (scene.turntable)
-      throw ParameterError("scene", "has a turntable: side_touch plans in the base frame with the object standing still");
+    turntable_ = scene.turntable;
     if (scene.family != sensor::SensorFamily::GelStereo)
       throw ParameterError("scene", "describes a GelSight-type sensor: side_touch checks the reach of a GelStereo's dome");
     limits_.gel_radius_mm = scene.sensor.gel.radius_mm();
@@ -96,18 +107,27 @@ class SideTouch final : public Stage {
     aim_step_mm_ = 0.25 * box.sizes().maxCoeff();
   }
 
-  // Whether a touch along `frame` at its (0, 0), meant for the surface at
-  // `intended_mm` there, can be made; counts a refusal.
-  bool reachable(const Eigen::Isometry3d& frame, std::optional<double> intended_mm) {
+  // Why a touch along `frame` (object frame) at its (0, 0), meant for the
+  // surface at `intended_mm` there, cannot be made; nothing when it can.
+  // `first` keeps the first refusal of the touch being chosen.
+  std::optional<simulation::ReachRefusal> refused(const Eigen::Isometry3d& frame, std::optional<double> intended_mm,
+                                                  std::optional<simulation::ReachRefusal>& first) {
     const simulation::ApproachView view(object_, frame.inverse());
-    const auto refused = simulation::refuse_approach(view, frame, {0, 0}, intended_mm, limits_);
-    if (refused) ++refused_[static_cast<std::size_t>(*refused)];
-    return !refused;
+    const auto why = simulation::refuse_approach(view, frame, {0, 0}, intended_mm, limits_);
+    if (why) {
+      ++refused_candidates_;
+      if (!first) first = why;
+    }
+    return why;
+  }
+  void count_refused_touch(const std::optional<simulation::ReachRefusal>& first) {
+    if (first) ++refused_[static_cast<std::size_t>(*first)];
   }
 
   void emit(const Eigen::Isometry3d& frame, const Eigen::Vector3d& aim, StageIO& io, RunContext& ctx, bool done) {
     TouchTarget target;
-    target.base_from_approach = frame;
+    // The object turns under the touch; `frame` is in its own frame.
+    target.base_from_approach = turntable_ ? turntable_->base_from_object(calls_) * frame : frame;
     target.exploratory = calls_ >= start_touches_;
     ++calls_;
     const double tilt = std::acos(std::clamp(frame.linear()(2, 2), -1.0, 1.0)) * 180.0 / M_PI;
@@ -128,29 +148,36 @@ class SideTouch final : public Stage {
       // reached (a ring's hole), beside it across the approach.
       const auto directions = planning::start_directions(start_touches_, start_tilt_deg_);
       const Eigen::Vector2d aims[] = {{0, 0}, {1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-      for (; next_start_ < directions.size(); ++next_start_)
+      for (; next_start_ < directions.size(); ++next_start_) {
+        std::optional<simulation::ReachRefusal> first;
         for (const Eigen::Vector2d& aim : aims) {
           Eigen::Isometry3d frame = simulation::approach_frame(centre_mm_, directions[next_start_]);
           frame.translation() += frame.linear().leftCols<2>() * (aim_step_mm_ * aim);
-          if (!reachable(frame, std::nullopt)) continue;
+          if (refused(frame, std::nullopt, first)) continue;
+          count_refused_touch(first);
           ++next_start_;
           emit(frame, frame.translation(), io, ctx, false);
           return;
         }
+        count_refused_touch(first);  // a start touch none of whose aims can be reached
+      }
       if (!has_model) throw RunError("no approach of the start can reach the object, and there is no model yet");
     }
     std::vector<Eigen::Vector3d> surface;
     surface.reserve((*points)->size());
     for (const auto& p : (*points)->points) surface.emplace_back(p.x, p.y, p.z);
     const auto candidates = planning::side_candidates(**implicit, surface, choice_, ctx.rng()());
+    std::optional<simulation::ReachRefusal> first;
     for (const planning::SideCandidate& c : candidates) {
       const Eigen::Isometry3d frame = simulation::approach_frame(c.point_mm, -c.outward);
-      if (!reachable(frame, 0.0)) continue;
+      if (refused(frame, 0.0, first)) continue;
+      count_refused_touch(first);
       ctx.metric("chosen_variance", c.variance_mm2, "mm^2");
       ctx.metric("footprint_variance", c.footprint_variance_mm2, "mm^2");
       emit(frame, c.point_mm, io, ctx, false);
       return;
     }
+    count_refused_touch(first);
     // Nothing reachable: one more touch straight down at the centre, and the loop ends.
     ctx.note("stopped", "after " + std::to_string(calls_) + " touches no candidate could be reached");
     emit(simulation::approach_frame(centre_mm_, {0, 0, -1}), centre_mm_, io, ctx, true);
@@ -164,6 +191,7 @@ class SideTouch final : public Stage {
                  static_cast<double>(refused_[static_cast<std::size_t>(r)]), "touches");
     }
     ctx.metric("refused_touches", static_cast<double>(all), "touches");
+    ctx.metric("refused_candidates", static_cast<double>(refused_candidates_), "approaches");
     ctx.metric("touches_planned", calls_, "touches");
   }
 };

@@ -10,6 +10,13 @@
 Every mesh is closed (each edge shared by two triangles, in opposite directions)
 and faces outwards; the mug is two such surfaces, its cup and its handle, meeting.
 
+Beside each scene.yaml, scene_fingertip.yaml: the same scene touched by a
+fingertip-sized marker GelStereo, a 20 mm dome (markers 0.9 mm apart on
+average, 0.75 mm at least) instead of the Palm 2.0's 65 mm one; its cameras,
+plate and robot are the Palm's. A simulated sensor, not a published one: it
+is small enough to press inside the mug and the torus's 50 mm hole, which the
+65 mm dome cannot enter.
+
     sample_clouds/closed_objects/make_closed_objects.py [build/bin/touchcloud-make-scene]
 
 Meshes are ASCII PLY in mm, outward-facing triangles, written deterministically.
@@ -147,6 +154,24 @@ def step():
     return [tuple(float(c) for c in p) for p in v], f
 
 
+FINGERTIP = {"gel: {diameter_mm: 65}": "gel: {diameter_mm: 20}   # a fingertip: see make_closed_objects.py",
+             "markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8,": "markers: {min_spacing_mm: 0.75, mean_spacing_mm: 0.9,"}
+
+
+def write_fingertip_scene(folder):
+    """scene_fingertip.yaml from the folder's scene.yaml: the 20 mm dome."""
+    with open(os.path.join(folder, "scene.yaml")) as f:
+        text = f.read()
+    for palm, tip in FINGERTIP.items():
+        if palm not in text:
+            raise SystemExit(f"{folder}/scene.yaml: no '{palm}' to make the fingertip scene from")
+        text = text.replace(palm, tip)
+    text = text.replace("touched by the marker GelStereo Palm 2.0.",
+                        "touched by a 20 mm fingertip GelStereo\n# (scene.yaml with a smaller dome and denser markers).", 1)
+    with open(os.path.join(folder, "scene_fingertip.yaml"), "w") as f:
+        f.write(text)
+
+
 def write_ply(path, verts, faces, comment):
     with open(path, "w") as f:
         f.write(f"ply\nformat ascii 1.0\ncomment {comment}\nelement vertex {len(verts)}\n"
@@ -171,6 +196,7 @@ def main():
         # The scene beside the mesh; make-scene copies the mesh into the object's folder.
         subprocess.run([make_scene, mesh, "--name", name, "--out", HERE], check=True)
         os.remove(mesh)
+        write_fingertip_scene(os.path.join(HERE, name))
 
 
 if __name__ == "__main__":

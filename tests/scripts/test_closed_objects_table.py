@@ -1,6 +1,8 @@
 """benchmarks/closed_objects/make_closed_objects_table.py on one shape, one
-seed and two touches: every file it promises, one summary row per method,
-a curve row per touch, and bad arguments refused before anything runs."""
+seed and two touches from above and from any side: every file it promises,
+one summary row per method (the all-sides rows with the Palm's dome and the
+fingertip's), a curve row per touch, the F-score off the table, and bad
+arguments refused before anything runs."""
 import csv
 import math
 import os
@@ -24,27 +26,56 @@ def rows(path):
 
 
 def test_one_shape_one_seed_two_touches(tmp_path):
-    r = table(tmp_path, "--shapes", "pebble", "--seeds", "1", "--touches", "2")
+    r = table(tmp_path, "--shapes", "pebble", "--seeds", "1", "--touches", "2", "--all-sides-touches", "2")
     assert r.returncode == 0, r.stderr
     summary = rows(tmp_path / "results.csv")
-    assert [(s["shape"], s["method"].split(" (")[0]) for s in summary] == [("pebble", "height field"),
-                                                                          ("pebble", "implicit surface")]
+    methods = ["height field", "implicit surface", "implicit surface, all sides",
+               "implicit surface, all sides, 20 mm fingertip"]
+    assert [(s["shape"], s["method"].split(" (")[0]) for s in summary] == [("pebble", m) for m in methods]
     for s in summary:
         assert s["seeds"] == "1" and float(s["touches"]) == 2
-        for name in ("chamfer_est_to_gt", "p95_est_to_gt", "hausdorff", "fscore", "recall"):
+        for name in ("chamfer_est_to_gt", "p95_est_to_gt", "hausdorff", "fscore", "recall", "fscore_off_table"):
             assert math.isfinite(float(s[name])), (name, s)
             assert float(s[name + "_sd"]) == 0.0  # one seed
         assert float(s["chamfer_est_to_gt"]) <= float(s["hausdorff"]) and float(s["p95_est_to_gt"]) <= float(s["hausdorff"])
-    assert len(rows(tmp_path / "runs.csv")) == 2
+        assert 0 < float(s["fscore_off_table"]) <= 1
+        assert float(s["on_table_share"]) == 0  # the pebble has no face on the table
+    # Refusals are side_touch's: counted for the touches from any side alone.
+    assert [s["refused_touches"] != "" for s in summary] == [False, False, True, True]
+    assert len(rows(tmp_path / "runs.csv")) == 4
     curves = rows(tmp_path / "curves.csv")
-    assert [(c["method"].split(" (")[0], c["touch"]) for c in curves] == [
-        ("height field", "1"), ("height field", "2"), ("implicit surface", "1"), ("implicit surface", "2")]
+    assert [(c["method"].split(" (")[0], c["touch"]) for c in curves] == [(m, t) for m in methods for t in "12"]
     assert "± 0.000" in (tmp_path / "results.md").read_text()
 
 
 def test_bad_arguments_are_refused_before_any_run(tmp_path):
     for args, says in ((["--shapes", "cube"], "no shape cube"), (["--seeds", "one"], "--seeds 'one'"),
-                       (["--touches", "0"], "--touches")):
+                       (["--touches", "0"], "--touches"), (["--all-sides-touches", "0"], "--all-sides-touches"),
+                       (["--methods", "all_sides,above"], "no method above")):
         r = table(tmp_path / "out", *args)
         assert r.returncode == 2 and says in r.stderr, (args, r.stderr)
     assert not (tmp_path / "out").exists()
+
+
+def test_a_failed_run_is_listed_and_a_kept_run_is_not_made_again(tmp_path):
+    runs = tmp_path / "runs"
+    first = table(tmp_path / "first", "--shapes", "pebble", "--touches", "2", "--methods", "height_field",
+                  "--runs", str(runs))
+    assert first.returncode == 0, first.stderr
+    # A touchcloud whose runs all fail: the kept height-field run is tabulated
+    # as before, the implicit surface's run fails and is listed, not averaged.
+    failing = tmp_path / "touchcloud"
+    failing.write_text(f'#!/bin/sh\nif [ "$1" = run ]; then echo "touchcloud: error: no run here" >&2; exit 2; fi\n'
+                       f'exec "{CLI}" "$@"\n')
+    failing.chmod(0o755)
+    second = table(tmp_path / "second", "--shapes", "pebble", "--touches", "2", "--methods", "height_field,implicit",
+                   "--runs", str(runs), "--touchcloud", str(failing))
+    assert second.returncode == 0, second.stderr
+    before, after = rows(tmp_path / "first/results.csv"), rows(tmp_path / "second/results.csv")
+    assert [(s["seeds"], s["failed"]) for s in after] == [("1", "0"), ("0", "1")]
+    assert after[0]["chamfer_est_to_gt"] == before[0]["chamfer_est_to_gt"] and after[1]["chamfer_est_to_gt"] == ""
+    assert "- pebble, implicit surface (GPIS, max variance), seed 1: no run here" in \
+        (tmp_path / "second/results.md").read_text()
+    assert [r["failure"] for r in rows(tmp_path / "second/runs.csv")] == ["", "no run here"]
+    # The failure is kept with the run: a seeded run would fail again.
+    assert "no run here" in next(runs.glob("pebble-implicit-*/failure.txt")).read_text()

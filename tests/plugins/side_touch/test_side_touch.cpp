@@ -1,23 +1,40 @@
 // side_touch in pipelines/closed_object_all_sides.yaml on the shipped torus
 // (bottom on the table, 30 mm tall): touches from any side, each checked
-// against the scene's object before it is made.
+// against the scene's object before it is made; on a turntable, the chosen
+// approach turned with the object.
+#include <fstream>
+
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "stage_harness.hpp"
 #include "test_support.hpp"
+#include "touchcloud/types/touch.hpp"
 
 namespace fs = std::filesystem;
 using touchcloud::test::run_cli;
 
 namespace {
 
-nlohmann::json run_torus(const fs::path& out, const std::vector<std::string>& sets) {
+const fs::path kTorusScene = touchcloud::test::source_dir() / "sample_clouds/closed_objects/torus/scene.yaml";
+
+// The shipped torus's scene with `turntable` added (its mesh found from `dir`).
+fs::path torus_on_turntable(const fs::path& dir, const std::string& turntable) {
+  std::string text = touchcloud::test::read_file(kTorusScene);
+  const std::string mesh = "mesh: torus.ply";
+  text.replace(text.find(mesh), mesh.size(), "mesh: " + (kTorusScene.parent_path() / "torus.ply").string());
+  const fs::path scene = dir / "torus_turntable.yaml";
+  std::ofstream(scene) << text << turntable;
+  return scene;
+}
+
+nlohmann::json run_torus(const fs::path& out, const std::vector<std::string>& sets,
+                         const fs::path& scene = kTorusScene) {
   std::vector<std::string> args{"run",
                                 (touchcloud::test::source_dir() / "pipelines/closed_object_all_sides.yaml").string(),
-                                "--scene",
-                                (touchcloud::test::source_dir() / "sample_clouds/closed_objects/torus/scene.yaml").string(),
-                                "--seed", "1", "--quiet", "--out", out.string()};
+                                "--scene", scene.string(), "--seed", "1", "--quiet", "--out", out.string()};
   for (const auto& s : sets) args.insert(args.end(), {"--set", s});
   const auto r = run_cli(args);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -28,17 +45,53 @@ double metric(const nlohmann::json& s, const std::string& key) { return s["metri
 }  // namespace
 
 // A start tilted to the horizontal: the 65 mm dome beside a 30 mm tall torus
-// would sweep below the table, so all four side approaches are refused for
-// the table before they are made, counted, and the touches go elsewhere.
+// would sweep below the table, so all four side approaches (each aimed at
+// the centre and at four points beside it) are refused for the table before
+// they are made, and the touches go elsewhere. A refused touch is a first
+// choice refused: four start touches, plus at most one per touch made after
+// them; the approaches tried, 5 aims each, are counted apart.
 TEST(SideTouch, ApproachesThatWouldMeetTheTableAreRefusedAndCounted) {
   touchcloud::test::TempDir dir;
   const nlohmann::json s = run_torus(dir / "flat", {"explore.max_iterations=3", "plan.start_tilt_deg=90"});
   EXPECT_EQ(metric(s, "plan.touches_planned"), 3);
   EXPECT_GE(metric(s, "plan.refused_table"), 4);
+  EXPECT_LE(metric(s, "plan.refused_touches"), 4 + 2);
+  EXPECT_GE(metric(s, "plan.refused_candidates"), 4 * 5);
   EXPECT_EQ(metric(s, "plan.refused_touches"), metric(s, "plan.refused_table") + metric(s, "plan.refused_object") +
                                                    metric(s, "plan.refused_workspace") +
                                                    metric(s, "plan.refused_nothing"));
   EXPECT_EQ(metric(s, "sensor.touches"), 3);
+}
+
+// On a turntable the start's approaches, planned in the object's frame, are
+// turned with the object for the touch they are made in: the first straight
+// down onto the torus's centre, which a quarter turn about (30, 0) has moved
+// to (30, -30); the second, 45 degrees from the vertical from the object's +x
+// side, then comes from the base frame's +y side.
+TEST(SideTouch, OnATurntableTheApproachTurnsWithTheObject) {
+  using namespace touchcloud;
+  test::TempDir dir;
+  const fs::path scene = torus_on_turntable(dir.path(), "turntable: {centre_mm: [30, 0], angles_deg: [90]}\n");
+  test::StageHarness h("side_touch", {{"scene", scene.string()}}, "plan");
+  h.configure();
+  const auto first = h.process_one<TouchTarget>({}, "target");
+  ASSERT_TRUE(first.base_from_approach);
+  EXPECT_NEAR((first.base_from_approach->translation().head<2>() - Eigen::Vector2d(30, -30)).norm(), 0.0, 1e-9);
+  const auto second = h.process_one<TouchTarget>({}, "target");
+  ASSERT_TRUE(second.base_from_approach);
+  const Eigen::Vector3d back = second.base_from_approach->linear().col(2);  // the approach frame's z: against the press
+  EXPECT_NEAR((back - Eigen::Vector3d(0, std::sqrt(0.5), std::sqrt(0.5))).norm(), 0.0, 1e-9) << back.transpose();
+}
+
+// The shipped pipeline on a turntable that turns the torus a quarter turn
+// between touches: every touch is made, the fit closes round them.
+TEST(SideTouch, ATurntableSceneIsTouchedFromSeveralSides) {
+  touchcloud::test::TempDir dir;
+  const fs::path scene = torus_on_turntable(dir.path(), "turntable: {centre_mm: [10, 0], step_deg: 90}\n");
+  const nlohmann::json s = run_torus(dir / "turning", {"explore.max_iterations=6"}, scene);
+  EXPECT_EQ(metric(s, "plan.touches_planned"), 6);
+  EXPECT_EQ(metric(s, "sensor.touches"), 6);
+  EXPECT_LT(metric(s, "score.chamfer_est_to_gt"), 5.0);
 }
 
 // The shipped start: straight down, then four approaches 45 degrees from the

@@ -1,5 +1,8 @@
 // The object seen along a press from any side (approach_view.hpp) and the
 // reach check of such a touch (reach_check.hpp: refuse_approach).
+#include <algorithm>
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "closed_shape_fixture.hpp"
@@ -93,4 +96,42 @@ TEST(ApproachReach, APressIntoTheTableIsRefusedForTheTable) {
   EXPECT_STREQ(simulation::to_string(*refused), "table");
   limits.press_mm = 0;  // only touching it
   EXPECT_FALSE(simulation::refuse_approach(view, beside, {0, 0}, std::nullopt, limits));
+}
+
+// The shipped mug's two scenes (sample_clouds/closed_objects/mug). A press
+// straight down at its footprint's centre, 13.5 mm beside the cup's axis:
+// the Palm's 65 mm dome stops on the rim (z = 90 mm), the 20 mm fingertip
+// (scene_fingertip.yaml) goes in and presses the inside floor (z = 6 mm).
+// A press onto the floor 25 mm from the axis: refused for the object with
+// the dome (it meets the rim first), reachable with the fingertip.
+TEST(ShippedMug, TheFingertipPressesInsideWhereThePalmsDomeStopsOnTheRim) {
+  const std::filesystem::path folder = source_dir() / "sample_clouds/closed_objects/mug";
+  for (const bool fingertip : {false, true}) {
+    SCOPED_TRACE(fingertip ? "fingertip" : "palm");
+    const simulation::Scene scene = simulation::load_scene(folder / (fingertip ? "scene_fingertip.yaml" : "scene.yaml"));
+    simulation::GelStereoSimulation sim(scene, 1);
+    press_touch(sim, simulation::PressTarget(Eigen::Vector2d(0, 0)));
+    double lowest = std::numeric_limits<double>::infinity();
+    int touching = 0;
+    for (std::size_t i = 0; i < sim.gel().overlapping.size(); ++i)
+      if (sim.gel().overlapping[i]) {
+        lowest = std::min(lowest, sim.gel().markers_base_mm[i].z());
+        ++touching;
+      }
+    ASSERT_GT(touching, 10);
+    if (fingertip)
+      EXPECT_NEAR(lowest, 6.0, 0.05);
+    else
+      EXPECT_GT(lowest, 89.0);
+
+    simulation::ApproachLimits limits;
+    limits.gel_radius_mm = scene.sensor.gel.radius_mm();
+    const Eigen::Isometry3d down = simulation::approach_frame({-13.5 + 25, 0, 6}, {0, 0, -1});
+    const simulation::ApproachView view(read_placed_object_mesh(scene.object), down.inverse());
+    const auto refused = simulation::refuse_approach(view, down, {0, 0}, 0.0, limits);
+    if (fingertip)
+      EXPECT_FALSE(refused) << simulation::to_string(*refused);
+    else
+      EXPECT_EQ(refused, simulation::ReachRefusal::Object);
+  }
 }

@@ -6,89 +6,73 @@ namespace touchcloud::imaging {
 
 namespace {
 
-// One field filled from the outside in: in each pass, every excluded pixel
-// with a kept (or already filled) 8-neighbour takes their mean; it counts as
-// kept from the next pass on.
+// The fields filled together: they share the excluded pixels and the sweeps.
 template <typename T>
-void peel(const cv::Mat& mask, int passes, cv::Mat& field, cv::Mat& known, std::vector<cv::Point>& left,
-          std::vector<std::pair<cv::Point, T>>& ready) {
+void fill_fields(const cv::Mat& mask, int sweeps, const std::vector<cv::Mat*>& fields, std::vector<int>& excluded,
+                 std::vector<int>& edge) {
   const int w = mask.cols, h = mask.rows;
-  known.create(mask.size(), CV_8UC1);
-  left.clear();
+  std::vector<T*> f;
+  for (cv::Mat* m : fields) f.push_back(m->ptr<T>());
+  excluded.clear();
+  edge.clear();
+  // Start: along each row, the straight line between the kept pixels either
+  // side of a run of excluded ones (the kept one where the run meets the
+  // image's end).
   for (int v = 0; v < h; ++v) {
     const std::uint8_t* m = mask.ptr<std::uint8_t>(v);
-    std::uint8_t* k = known.ptr<std::uint8_t>(v);
-    for (int u = 0; u < w; ++u) {
-      k[u] = m[u] == 0;
-      if (m[u]) left.emplace_back(u, v);
-    }
-  }
-  for (int pass = 0; pass < passes && !left.empty(); ++pass) {
-    ready.clear();
-    std::size_t kept = 0;
-    for (const cv::Point& p : left) {
-      T sum = 0;
-      int n = 0;
-      for (int dv = -1; dv <= 1; ++dv) {
-        const int v = p.y + dv;
-        if (v < 0 || v >= h) continue;
-        const std::uint8_t* k = known.ptr<std::uint8_t>(v);
-        const T* f = field.ptr<T>(v);
-        for (int du = -1; du <= 1; ++du) {
-          const int u = p.x + du;
-          if (u < 0 || u >= w || !k[u]) continue;
-          sum += f[u];
-          ++n;
-        }
+    for (int u = 0; u < w;) {
+      if (!m[u]) {
+        ++u;
+        continue;
       }
-      if (n > 0)
-        ready.emplace_back(p, sum / n);
-      else
-        left[kept++] = p;
-    }
-    left.resize(kept);
-    for (const auto& [p, value] : ready) {
-      field.at<T>(p) = value;
-      known.at<std::uint8_t>(p) = 1;
+      int end = u;
+      while (end < w && m[end]) ++end;  // the run is [u, end)
+      const int row = v * w;
+      for (T* g : f) {
+        const double left = u > 0 ? g[row + u - 1] : end < w ? g[row + end] : 0.0;
+        const double right = end < w ? g[row + end] : left;
+        for (int x = u; x < end; ++x)
+          g[row + x] = static_cast<T>(left + (right - left) * (x - u + 1) / (end - u + 1));
+      }
+      for (int x = u; x < end; ++x)
+        (v == 0 || v == h - 1 || x == 0 || x == w - 1 ? edge : excluded).push_back(row + x);
+      u = end;
     }
   }
-  for (const cv::Point& p : left) field.at<T>(p) = 0;  // out of reach
-  // Then smoothed towards the harmonic fill (Gauss-Seidel sweeps of the
-  // 4-neighbour mean over the excluded pixels), which takes a slope across
-  // a dot as a plane would, where the peel alone leans to the side it came
-  // from.
-  for (int sweep = 0; sweep < 2 * passes; ++sweep)
-    for (int v = 0; v < h; ++v) {
-      const std::uint8_t* m = mask.ptr<std::uint8_t>(v);
-      T* f = field.ptr<T>(v);
-      for (int u = 0; u < w; ++u) {
-        if (!m[u]) continue;
-        T sum = 0;
+  // Then sweeps towards the harmonic fill (Gauss-Seidel, 4-neighbour mean),
+  // which carries a slope across a dot in any direction as a plane would.
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (T* g : f)
+      for (const int p : excluded) g[p] = static_cast<T>(0.25 * (double(g[p - 1]) + g[p + 1] + g[p - w] + g[p + w]));
+    for (const int p : edge) {  // on the image's border: the neighbours it has
+      const int u = p % w, v = p / w;
+      for (T* g : f) {
+        double sum = 0;
         int n = 0;
-        if (u > 0) sum += f[u - 1], ++n;
-        if (u + 1 < w) sum += f[u + 1], ++n;
-        if (v > 0) sum += field.ptr<T>(v - 1)[u], ++n;
-        if (v + 1 < h) sum += field.ptr<T>(v + 1)[u], ++n;
-        f[u] = sum / n;
+        if (u > 0) sum += g[p - 1], ++n;
+        if (u + 1 < w) sum += g[p + 1], ++n;
+        if (v > 0) sum += g[p - w], ++n;
+        if (v + 1 < h) sum += g[p + w], ++n;
+        g[p] = static_cast<T>(sum / n);
       }
     }
+  }
 }
 
 }  // namespace
 
 void ExcludedFill::fill(const ExcludedPixels& excluded, std::initializer_list<cv::Mat*> fields) {
-  CV_Assert(excluded.mask.type() == CV_8UC1 && excluded.window_px >= 3 && excluded.window_px % 2 == 1);
-  const int passes = excluded.window_px / 2;
-  for (cv::Mat* f : fields) {
-    CV_Assert((f->type() == CV_32FC1 || f->type() == CV_64FC1) && f->size() == excluded.mask.size());
-    if (f->type() == CV_64FC1) {
-      std::vector<std::pair<cv::Point, double>> ready;
-      peel<double>(excluded.mask, passes, *f, known_, left_, ready);
-    } else {
-      std::vector<std::pair<cv::Point, float>> ready;
-      peel<float>(excluded.mask, passes, *f, known_, left_, ready);
-    }
-  }
+  CV_Assert(excluded.mask.type() == CV_8UC1 && excluded.mask.isContinuous() && excluded.window_px >= 3 &&
+            excluded.window_px % 2 == 1 && fields.size() >= 1);
+  const int type = (*fields.begin())->type();
+  for (cv::Mat* f : fields)
+    CV_Assert(f->type() == type && (type == CV_32FC1 || type == CV_64FC1) && f->isContinuous() &&
+              f->size() == excluded.mask.size());
+  const std::vector<cv::Mat*> all(fields);
+  if (type == CV_64FC1)
+    fill_fields<double>(excluded.mask, excluded.window_px, all, excluded_, edge_);
+  else
+    fill_fields<float>(excluded.mask, excluded.window_px, all, excluded_, edge_);
 }
 
 }  // namespace touchcloud::imaging

@@ -92,7 +92,7 @@ void score_against_truth(Reconstruction& r, const std::string& name) {
 // share the tolerances but the largest error. The mask is what holds them:
 // with the dots left in the held-out images (the calibration's mask kept),
 // the dots that move with the gel integrate to bumps, height RMSE
-// 0.037-0.11 mm and largest errors 0.48-1.0 mm.
+// 0.035-0.11 mm and largest errors 0.47-0.94 mm.
 struct MarkersOff {
   static constexpr bool on = false;
   static constexpr double worst_mm = 0.05;

@@ -1,6 +1,6 @@
 // A recorded GelSight-type frame to height map and cloud on one core, as a
 // pipeline runs it (plugins loaded by name, one process() per frame): photometric_depth (markers: mask: the dots found
-// and filled in the image; the reference's are found once and kept) and
+// and masked in the image, their pixels given the gradients around them; the reference's are found once and kept) and
 // height_to_cloud (every 2nd pixel). The frame: a 320 x 240 press of the
 // calibration ball with dots on the gel (the simulator's `markers` and
 // `pixel_noise`), stored as a PNG and decoded, as a recording gives it. The
@@ -20,7 +20,7 @@
 #include <memory>
 
 #include "support/loaded_stage.hpp"
-#include "touchcloud/imaging/marker_fill.hpp"
+#include "touchcloud/imaging/marker_mask.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/simulation/gelsight_simulation.hpp"
 #include "touchcloud/types/height_map.hpp"
@@ -103,7 +103,7 @@ void BM_Frame(benchmark::State& state) {
 BENCHMARK(BM_Frame)->ArgNames({"markers", "decode"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 // The parts of markers: mask on the dotted frame: the detector alone, and
-// the whole fill (detection, ink mask, inpainting; the reference kept).
+// the mask (detection and ink mask; the reference kept).
 void BM_MarkerDetect(benchmark::State& state) {
   const cv::Mat image = cv::imdecode(recording(true).frame_png, cv::IMREAD_COLOR);
   imaging::MarkerDetector detector({});
@@ -111,11 +111,11 @@ void BM_MarkerDetect(benchmark::State& state) {
 }
 BENCHMARK(BM_MarkerDetect)->Unit(benchmark::kMillisecond);
 
-void BM_MarkerFill(benchmark::State& state) {
+void BM_MarkerMask(benchmark::State& state) {
   const cv::Mat image = cv::imdecode(recording(true).frame_png, cv::IMREAD_COLOR);
-  imaging::MarkerFill fill({});
-  for (auto _ : state) benchmark::DoNotOptimize(fill.fill(image, recording(true).reference).image.data);
+  imaging::MarkerMask mask({});
+  for (auto _ : state) benchmark::DoNotOptimize(mask.masks(image, recording(true).reference).excluded.mask.data);
 }
-BENCHMARK(BM_MarkerFill)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MarkerMask)->Unit(benchmark::kMillisecond);
 
 }  // namespace

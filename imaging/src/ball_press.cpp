@@ -49,6 +49,11 @@ const char* to_string(PressRefusal refusal) {
 
 BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference, double detect_grey,
                                  double ball_radius_mm, double mm_per_px, CircleMethod method) {
+  return find_ball_press(image, reference, ExcludedPixels{}, detect_grey, ball_radius_mm, mm_per_px, method);
+}
+
+BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference, const ExcludedPixels& excluded,
+                                 double detect_grey, double ball_radius_mm, double mm_per_px, CircleMethod method) {
   BallPressFinding out;
   const auto refuse = [&](PressRefusal why, std::string text) {
     out.refusal = why;
@@ -60,6 +65,10 @@ BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference,
   std::vector<cv::Mat> channels;
   cv::split(difference, channels);
   cv::Mat largest = cv::max(cv::max(channels[0], channels[1]), channels[2]);
+  if (!excluded.mask.empty()) {
+    largest.convertTo(largest, CV_32FC1);
+    ExcludedFill().fill(excluded, {&largest});
+  }
   cv::blur(largest, largest, cv::Size(3, 3));
   const cv::Mat mask = largest > detect_grey;
   cv::Mat labels, stats, centroids;
@@ -88,6 +97,13 @@ BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference,
     if (outer == contours.end() || outer->size() < 8)
       return refuse(PressRefusal::NoContact, "the differing region is a few pixels only");
     circle = fit_circle(*outer);
+    // Refit without the edge pixels well off the circle: a speck or a
+    // marker's residue joined to the region bulges its edge outwards.
+    std::vector<cv::Point> on_circle;
+    for (const cv::Point& p : *outer)
+      if (std::abs(std::hypot(p.x - circle.centre_px.x(), p.y - circle.centre_px.y()) - circle.radius_px) < 1.5)
+        on_circle.push_back(p);
+    if (on_circle.size() >= 8) circle = fit_circle(on_circle);
   }
   if (circle.radius_px * mm_per_px >= 0.95 * ball_radius_mm)
     return refuse(PressRefusal::TooBig, "the contact circle (radius " + std::to_string(circle.radius_px * mm_per_px) +
@@ -97,8 +113,9 @@ BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference,
   return out;
 }
 
-void ball_samples(const cv::Mat& image, const cv::Mat& reference, const ContactCircle& press, double ball_radius_mm,
-                  double mm_per_px, std::vector<Eigen::Vector3d>& difference, std::vector<Eigen::Vector2d>& gradient,
+void ball_samples(const cv::Mat& image, const cv::Mat& reference, const cv::Mat& excluded, const ContactCircle& press,
+                  double ball_radius_mm, double mm_per_px, std::vector<Eigen::Vector3d>& difference,
+                  std::vector<Eigen::Vector2d>& gradient,
                   double inner, double flat_from, double flat_to, int flat_stride) {
   const double a = press.radius_px, r2_ball = ball_radius_mm * ball_radius_mm;
   const int reach = static_cast<int>(std::ceil(flat_to * a));
@@ -108,6 +125,7 @@ void ball_samples(const cv::Mat& image, const cv::Mat& reference, const ContactC
   const int v1 = std::min(image.rows - 1, static_cast<int>(press.centre_px.y()) + reach);
   for (int v = v0; v <= v1; ++v)
     for (int u = u0; u <= u1; ++u) {
+      if (!excluded.empty() && excluded.at<std::uint8_t>(v, u)) continue;
       const double du = u - press.centre_px.x(), dv = v - press.centre_px.y();
       const double r_px = std::hypot(du, dv);
       if (r_px < inner * a) {

@@ -26,8 +26,21 @@ PhotometricDepthSolver::PhotometricDepthSolver(sensor::PhotometricCalibration ca
 }
 
 DepthResult PhotometricDepthSolver::solve(const cv::Mat& image, const cv::Mat& reference) {
-  const int w = image.cols, h = image.rows;
   DepthResult out;
+  gradients(image, reference, out);
+  return integrate(std::move(out));
+}
+
+DepthResult PhotometricDepthSolver::solve(const cv::Mat& image, const cv::Mat& reference,
+                                          const ExcludedPixels& excluded) {
+  DepthResult out;
+  gradients(image, reference, out);
+  excluded_fill_.fill(excluded, {&out.gx, &out.gy});
+  return integrate(std::move(out));
+}
+
+void PhotometricDepthSolver::gradients(const cv::Mat& image, const cv::Mat& reference, DepthResult& out) {
+  const int w = image.cols, h = image.rows;
   gx_.create(h, w, CV_64FC1);
   gy_.create(h, w, CV_64FC1);
   out.gx = gx_;
@@ -71,6 +84,12 @@ DepthResult PhotometricDepthSolver::solve(const cv::Mat& image, const cv::Mat& r
       gy[u] = y;
     }
   }
+}
+
+DepthResult PhotometricDepthSolver::integrate(DepthResult out) {
+  const int w = out.gx.cols, h = out.gx.rows;
+  const cv::Mat& difference = difference_;
+  const int flat = static_cast<int>(std::floor(options_.flat_grey));
   // Pixel-centred gradients to staggered differences in mm per pixel.
   const double pitch = calibration_.mm_per_px;
   for (int v = 0; v < h; ++v) {

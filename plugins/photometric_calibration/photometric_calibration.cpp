@@ -10,8 +10,12 @@
 // circle or why it has none (a table and a contact sheet), and the ball's cap
 // reconstructed with the calibration (photometric depth) against the ideal
 // sphere, for the fitted presses and the held-out ones apart. `markers: mask`
-// fills the gel's marker dots in both images first (imaging/marker_fill.hpp)
-// and records it in the file (`markers: masked`).
+// finds the gel's marker dots in both images (imaging/marker_mask.hpp) and
+// reads no colour on their ink: the circle is looked for with each dot's
+// pixels given the difference around them, the fit takes no sample there (a
+// fill would only guess the shading, worst on a contact's rim), and the caps
+// are reconstructed as photometric_depth does with `markers: mask`; the file
+// records it (`markers: masked`).
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -28,7 +32,6 @@
 #include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/library_versions.hpp"
 #include "touchcloud/plugin.hpp"
-#include "touchcloud/plugin_kit/marker_mask_parameters.hpp"
 #include "touchcloud/sensor/gelsight_sensor.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/types/frame_stamp.hpp"
@@ -44,6 +47,7 @@ enum class PressStatus { Found, Corrected, Skipped, Refused };
 struct Press {
   std::string name;
   cv::Mat image, reference;
+  imaging::ExcludedPixels excluded;  // markers: mask: the dots' ink in either image; an empty mask without
   PressStatus status = PressStatus::Refused;
   std::optional<imaging::ContactCircle> circle;
   std::optional<imaging::PressRefusal> refusal;  // refused: why, in a word
@@ -76,7 +80,7 @@ class PhotometricCalibrationStage final : public Stage {
   double holdout_ = 0;
   imaging::CircleMethod circle_method_ = imaging::CircleMethod::EdgeFit;
   imaging::MarkerMaskParameters markers_;
-  std::optional<imaging::MarkerFill> marker_fill_;  // markers: mask
+  std::optional<imaging::MarkerMask> marker_mask_;  // markers: mask
   sensor::GelSightSensor sensor_;                                  // read at check
   std::map<std::string, photometric::PressCorrection> corrections_;  // read at check
   std::vector<Press> presses_;
@@ -146,7 +150,7 @@ class PhotometricCalibrationStage final : public Stage {
                                                          ball_radius_mm_ / sensor_.mm_per_px);
   }
 
-  void on_configure(RunContext&) override { marker_fill_ = markers_.make_fill(); }
+  void on_configure(RunContext&) override { marker_mask_ = markers_.make_mask(); }
 
   void require_frame(const MonoColourFramePtr& f, const std::string& port) const {
     const std::string where = "input '" + port + "'";
@@ -172,17 +176,16 @@ class PhotometricCalibrationStage final : public Stage {
     press.name = stamp && !stamp->source.empty() ? stamp->source : "frame " + std::to_string(image->index);
     press.image = image->image;
     press.reference = reference->image;
-    if (marker_fill_) {  // the dots filled before the circle is looked for and the fit reads the colours
-      const imaging::FilledPair filled = marker_fill_->fill(press.image, press.reference);
-      press.image = filled.image.clone();
-      press.reference = filled.reference.clone();
+    if (marker_mask_) {
+      press.excluded = marker_mask_->masks(press.image, press.reference).excluded;
+      press.excluded.mask = press.excluded.mask.clone();
     }
     if (const auto c = corrections_.find(press.name); c != corrections_.end()) {
       press.circle = c->second.circle;
       press.status = press.circle ? PressStatus::Corrected : PressStatus::Skipped;
     } else {
-      auto found = imaging::find_ball_press(press.image, press.reference, detect_grey_, ball_radius_mm_,
-                                            sensor_.mm_per_px, circle_method_);
+      auto found = imaging::find_ball_press(press.image, press.reference, press.excluded, detect_grey_,
+                                            ball_radius_mm_, sensor_.mm_per_px, circle_method_);
       press.circle = found.circle;
       press.status = found.circle ? PressStatus::Found : PressStatus::Refused;
       press.refusal = found.refusal;
@@ -226,8 +229,8 @@ class PhotometricCalibrationStage final : public Stage {
     long fitted = 0;
     for (const Press* p : usable)
       if (!p->held_out) {
-        imaging::ball_samples(p->image, p->reference, *p->circle, ball_radius_mm_, sensor_.mm_per_px, difference,
-                              gradient);
+        imaging::ball_samples(p->image, p->reference, p->excluded.mask, *p->circle, ball_radius_mm_,
+                              sensor_.mm_per_px, difference, gradient);
         ++fitted;
       }
     if (fitted == 0)
@@ -240,14 +243,15 @@ class PhotometricCalibrationStage final : public Stage {
     c.height_px = sensor_.height_px;
     c.mm_per_px = sensor_.mm_per_px;
     c.gel_thickness_mm = sensor_.gel_thickness_mm;
-    c.markers_masked = marker_fill_.has_value();
+    c.markers_masked = marker_mask_.has_value();
 
     // The caps, reconstructed as photometric_depth would with its defaults.
     imaging::PhotometricDepthSolver solver(c, imaging::DepthOptions{});
     CapSummary in_fit, out_of_fit;
     for (Press* p : usable) {
-      p->cap = imaging::score_ball_cap(solver.solve(p->image, p->reference).height_mm, *p->circle, ball_radius_mm_,
-                                       sensor_.mm_per_px);
+      const imaging::DepthResult depth =
+          marker_mask_ ? solver.solve(p->image, p->reference, p->excluded) : solver.solve(p->image, p->reference);
+      p->cap = imaging::score_ball_cap(depth.height_mm, *p->circle, ball_radius_mm_, sensor_.mm_per_px);
       (p->held_out ? out_of_fit : in_fit).add(p->cap);
     }
 

@@ -8,8 +8,10 @@
 // contact nearly everywhere, a reference of another exposure): `checks`
 // says whether a finding warns (a metric and a note in summary.json, a log
 // line) or stops the run as bad input. `markers: mask` finds the gel's
-// marker dots in both images and fills them (imaging/marker_fill.hpp)
-// before the colour difference becomes a gradient. A calibration fitted to a
+// marker dots in both images (imaging/marker_mask.hpp); their ink gives no
+// gradient, each of its pixels takes the gradients around it (the solver's
+// excluded pixels), so a dot is no bump and a dot on a contact's rim leaves
+// the rim's slope. A calibration fitted to a
 // gel without markers fed images with markers (at least kMarkersSeen dots
 // found) is a finding of the checks too.
 #include <optional>
@@ -49,7 +51,7 @@ class PhotometricDepth final : public Stage {
   sensor::PhotometricCalibration calibration_;  // read at check
   std::unique_ptr<imaging::PhotometricDepthSolver> solver_;
   imaging::MarkerMaskParameters markers_;
-  std::optional<imaging::MarkerFill> marker_fill_;  // markers: mask
+  std::optional<imaging::MarkerMask> marker_mask_;  // markers: mask
   std::optional<imaging::MarkerDetector> marker_check_;  // markers: none, a calibration without markers
   std::set<std::string> noted_;  // the notes written so far
 
@@ -87,7 +89,7 @@ class PhotometricDepth final : public Stage {
     ports.metric("contact_share", "1", "share of the pixels in contact");
     ports.metric("exposure_difference_grey", "grey levels",
                  "image minus reference, mean brightness where the gel is flat (outside the contact)");
-    ports.metric("markers_masked", "markers", "markers: mask: dots found in the image (and filled)");
+    ports.metric("markers_masked", "markers", "markers: mask: dots found in the image (and masked)");
     ports.metric("depth_warnings", "checks", "checks this map failed (see the notes height_over_gel, "
                  "contact_everywhere, exposure_mismatch, markers_not_calibrated)").lower_is_better();
   }
@@ -107,8 +109,8 @@ class PhotometricDepth final : public Stage {
 
   void on_configure(RunContext& ctx) override {
     solver_ = std::make_unique<imaging::PhotometricDepthSolver>(calibration_, options_);
-    marker_fill_ = markers_.make_fill();
-    if (!marker_fill_ && !calibration_.markers_masked) marker_check_.emplace(markers_.detector());
+    marker_mask_ = markers_.make_mask();
+    if (!marker_mask_ && !calibration_.markers_masked) marker_check_.emplace(markers_.detector());
     ctx.note("calibration_sensor", calibration_.sensor);
     ctx.log("calibration of " + calibration_.sensor + " at " +
             size_text(calibration_.width_px, calibration_.height_px) + ", polynomial degree " +
@@ -154,11 +156,11 @@ class PhotometricDepth final : public Stage {
     require_frame(reference, "reference");
     imaging::DepthResult r;
     std::size_t markers_seen = 0;
-    if (marker_fill_) {
-      const imaging::FilledPair filled = marker_fill_->fill(image->image, reference->image);
-      markers_seen = filled.image_markers;
+    if (marker_mask_) {
+      const imaging::MarkerMasks masked = marker_mask_->masks(image->image, reference->image);
+      markers_seen = masked.image_markers;
       ctx.metric("markers_masked", static_cast<double>(markers_seen), "markers");
-      r = solver_->solve(filled.image, filled.reference);
+      r = solver_->solve(image->image, reference->image, masked.excluded);
     } else {
       if (marker_check_) markers_seen = marker_check_->detect(image->image, "input 'image'").size();
       r = solver_->solve(image->image, reference->image);

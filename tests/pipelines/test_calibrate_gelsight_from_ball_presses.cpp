@@ -5,13 +5,14 @@
 // indenters (balls of 3 and 6 mm, a rod, raised letters) close to their true
 // height maps, and the ball's radius comes back from the reconstructed caps.
 // The same with marker dots printed on the gel (the simulator's `markers`),
-// masked and filled in the calibration (`calibrate.markers=mask`) and in the
+// masked in the calibration (`calibrate.markers=mask`) and in the
 // reconstructions.
 #include <cmath>
 #include <iostream>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "test_support.hpp"
 #include "touchcloud/imaging/ball_press.hpp"
@@ -57,7 +58,7 @@ cv::Mat written_and_read(const cv::Mat& image, const fs::path& file) {
 struct Reconstruction {
   cv::Mat image, height_mm;
   HeightMap truth;
-  double rmse_mm = 0;
+  double rmse_mm = 0, worst_mm = 0;
   long contact_px = 0;
 };
 
@@ -71,41 +72,50 @@ void score_against_truth(Reconstruction& r, const std::string& name) {
         ++r.contact_px;
       }
   r.rmse_mm = std::sqrt(squared / std::max(r.contact_px, 1L));
+  double worst = 0;  // the largest error anywhere: a dot left in integrates to a bump beside the contact too
+  cv::minMaxLoc(cv::abs(r.height_mm - r.truth.height_mm), nullptr, &worst);
+  r.worst_mm = worst;
   double deepest = 0;
   cv::minMaxLoc(r.truth.height_mm, nullptr, &deepest);
   std::cout << name << ": height RMSE " << r.rmse_mm << " mm over " << r.contact_px << " contact px (deepest "
-            << deepest << " mm)\n";
+            << deepest << " mm), largest error " << r.worst_mm << " mm\n";
 }
 
-// Tolerances per case, from what was measured (see the tests): without
-// dots about twice the errors; with dots (0.5 mm, 2 mm apart) the fill
-// around a dot on a contact's rim flattens the rim, and the errors grow:
-// caps 0.094 / 0.097 mm, ball radius 3.70 / 3.83 mm, held-out heights
-// 0.151 mm (3 mm ball), 0.032 (6 mm ball), 0.013 (rod), 0.016 (letters),
-// radii from the caps 22 % (3 mm) and 8 % (6 mm) small. With the dots left
-// in (no mask anywhere) the same presses gave smaller errors (caps 0.071 /
-// 0.079 mm, held-out heights 0.006-0.010 mm): on these rendered dots the
-// fill costs more at the rims than the ink it removes; the mask's own
-// benefit is at the dots (tests/plugins/photometric_depth/test_marker_mask).
+// Tolerances per case, from what was measured (see the tests), about twice
+// the worst error. With dots (0.5 mm, 2 mm apart) masked, the calibration
+// takes no sample on a dot's ink and each of those pixels takes the
+// gradients around it in the reconstructions (imaging/excluded_pixels.hpp),
+// and the errors come close to a gel without dots: caps 0.075 / 0.085 mm
+// (0.047 / 0.058 without dots), ball radius 4.019 / 4.095 mm, held-out
+// heights at most 0.016 mm (0.013 without), radii from the caps 2.3-2.7 %
+// small, largest error anywhere 0.082 mm (0.020 without), so both cases
+// share the tolerances but the largest error. The mask is what holds them:
+// with the dots left in the held-out images (the calibration's mask kept),
+// the dots that move with the gel integrate to bumps, height RMSE
+// 0.035-0.11 mm and largest errors 0.47-0.94 mm.
 struct MarkersOff {
   static constexpr bool on = false;
-  static constexpr double cap_rmse_mm = 0.1, ball_radius_mm = 0.15, height_rmse_mm = 0.03, radius_share = 0.05;
+  static constexpr double worst_mm = 0.05;
 };
 struct MarkersOn {
   static constexpr bool on = true;
-  static constexpr double cap_rmse_mm = 0.15, ball_radius_mm = 0.45, height_rmse_mm = 0.2, radius_share = 0.3;
+  static constexpr double worst_mm = 0.15;
 };
+constexpr double kCapRmseMm = 0.1, kBallRadiusToleranceMm = 0.15, kHeightRmseMm = 0.03, kRadiusShare = 0.05;
 
 template <typename Markers>
 class CalibrateFromBallPresses : public ::testing::Test {
  protected:
-  // The dots found and filled in a press and its background, as
-  // photometric_depth's `markers: mask` does; the images as they are without.
-  static std::pair<cv::Mat, cv::Mat> filled(const cv::Mat& image, const cv::Mat& background) {
-    if (!Markers::on) return {image, background};
-    imaging::MarkerMaskParameters stage_defaults{imaging::MarkerHandling::Mask, {3, 12}, 20.0};
-    const imaging::FilledPair f = stage_defaults.make_fill()->fill(image, background);
-    return {f.image.clone(), f.reference.clone()};
+  // The dots' ink in a press and its background, as photometric_depth's
+  // and photometric_calibration's `markers: mask` find it; none without.
+  static imaging::ExcludedPixels excluded(const cv::Mat& image, const cv::Mat& background) {
+    if (!Markers::on) return {};
+    imaging::ExcludedPixels e = mask_parameters().make_mask()->masks(image, background).excluded;
+    e.mask = e.mask.clone();
+    return e;
+  }
+  static imaging::MarkerMaskParameters mask_parameters() {  // the stages' defaults
+    return {imaging::MarkerHandling::Mask, {3, 12}, 20.0};
   }
 
   // Eight presses of the 4 mm ball over the pad and the background, as PNG
@@ -137,18 +147,21 @@ class CalibrateFromBallPresses : public ::testing::Test {
   }
   static double metric(const std::string& name) { return record_->metrics.at("calibrate." + name).values.back(); }
 
-  // A held-out press of `object` at the pad's centre, `travel_mm` deep,
-  // through a PNG file and the calibration, against its truth.
-  static Reconstruction reconstruct(std::shared_ptr<const simulation::ObjectSurface> object, double travel_mm,
-                                    const std::string& name) {
+  // A held-out press of `object` (at the base's origin) with the pad's
+  // centre at `place_mm`, `travel_mm` deep, through a PNG file and the
+  // calibration, against its truth.
+  static Reconstruction reconstruct(std::shared_ptr<const simulation::ObjectSurface> object,
+                                    const Eigen::Vector2d& place_mm, double travel_mm, const std::string& name) {
     simulation::GelSightSimulation sim(realistic_scene(*dir_, Markers::on), 48, std::move(object));
-    auto press = simulation::press_and_render(sim, {0, 0}, travel_mm);
+    auto press = simulation::press_and_render(sim, place_mm, travel_mm);
     Reconstruction r;
     r.image = written_and_read(press.image.image, *dir_ / (name + ".png"));
     imaging::PhotometricDepthSolver solver(
         sensor::load_photometric_calibration(*dir_ / "out/photometric_calibration.yaml"), imaging::DepthOptions{});
-    const auto [image, background] = filled(r.image, *background_);
-    r.height_mm = solver.solve(image, background).height_mm;
+    if (Markers::on)  // as photometric_depth's `markers: mask`: the dots' pixels take the gradients around them
+      r.height_mm = solver.solve(r.image, *background_, excluded(r.image, *background_)).height_mm;
+    else
+      r.height_mm = solver.solve(r.image, *background_).height_mm;
     r.truth = press.truth;
     score_against_truth(r, name);
     return r;
@@ -182,40 +195,53 @@ TYPED_TEST(CalibrateFromBallPresses, FindsEveryPressAndGivesTheBallsRadiusBack) 
   // Measured: 0.047 mm fitted and 0.058 mm held out on caps about 0.7 mm
   // deep, radius 3.997 and 4.075 mm (the outer presses, where vignetting dims
   // the contact most, are the worst). Tolerances: about twice the errors.
-  EXPECT_LT(metric("cap_rmse_mm"), TypeParam::cap_rmse_mm);
-  EXPECT_LT(metric("holdout_cap_rmse_mm"), TypeParam::cap_rmse_mm);
-  EXPECT_NEAR(metric("ball_radius_fit_mm"), kBallRadiusMm, TypeParam::ball_radius_mm);
-  EXPECT_NEAR(metric("holdout_ball_radius_fit_mm"), kBallRadiusMm, TypeParam::ball_radius_mm);
+  EXPECT_LT(metric("cap_rmse_mm"), kCapRmseMm);
+  EXPECT_LT(metric("holdout_cap_rmse_mm"), kCapRmseMm);
+  EXPECT_NEAR(metric("ball_radius_fit_mm"), kBallRadiusMm, kBallRadiusToleranceMm);
+  EXPECT_NEAR(metric("holdout_ball_radius_fit_mm"), kBallRadiusMm, kBallRadiusToleranceMm);
   EXPECT_TRUE(fs::exists(dir_->path() / "out/ball_presses.csv"));
   EXPECT_TRUE(fs::exists(dir_->path() / "out/ball_presses.png"));
 }
 
 TYPED_TEST(CalibrateFromBallPresses, ReconstructsHeldOutIndentersWithinTolerance) {
-  const auto reconstruct = [](auto object, double travel, const std::string& name) {
-    return TestFixture::reconstruct(std::move(object), travel, name);
-  };
   const cv::Mat* background_ = TestFixture::background_;
-  // Measured height RMSE in the contact: 0.010 mm (3 mm ball), 0.013 mm
-  // (6 mm ball), 0.006 mm (rod), 0.002 mm (letters), on contacts 0.32-0.68 mm
-  // deep at the pad's centre; the tolerance, 0.03 mm (under 10 % of the
+  // Each indenter pressed with the pad's centre over it and 2.5 mm to one
+  // side, 2 mm to the other (the contact off the image's centre, where the
+  // vignetting dims it; off-centre errors were at most 0.008 mm without
+  // dots, 0.016 mm with). 4 mm and 3 mm off, the letters run off the image
+  // (its border is held at zero height) and a masked rod's rim left a
+  // 0.6 mm error: not asserted.
+  // Measured height RMSE in the contact without dots: 0.010 mm (3 mm ball),
+  // 0.013 mm (6 mm ball), 0.006 mm (rod), 0.002 mm (letters) at the centre,
+  // on contacts 0.32-0.68 mm deep; the tolerance, 0.03 mm (under 10 % of the
   // shallowest), is more than twice the worst. Balls of other radii: the
   // radius from a sphere fitted to the reconstructed cap in the circle the
-  // finder gives came back 2.5 % (3 mm) and 2.9 % (6 mm) small: within 5 %.
-  for (const auto& [radius, travel] : {std::pair{3.0, 0.5}, std::pair{6.0, 0.6}}) {
-    const auto r = reconstruct(std::make_shared<simulation::BallIndenter>(radius, Eigen::Vector2d::Zero(), 8.0),
-                               travel, "ball_" + std::to_string(int(radius)));
-    EXPECT_LT(r.rmse_mm, TypeParam::height_rmse_mm) << "ball of " << radius << " mm";
-    const auto [image, background] = TestFixture::filled(r.image, *background_);
-    const auto found = imaging::find_ball_press(image, background, 8, radius, 0.06);
-    ASSERT_TRUE(found.circle) << found.why;
-    const auto cap = imaging::score_ball_cap(r.height_mm, *found.circle, radius, 0.06);
-    std::cout << "  radius from its cap " << cap.fitted_radius_mm << " mm\n";
-    EXPECT_NEAR(cap.fitted_radius_mm, radius, TypeParam::radius_share * radius) << "ball of " << radius << " mm";
+  // finder gives came back 2.5-3 % small: within 5 %.
+  for (const auto& [name, place] : {std::pair{std::string("centre"), Eigen::Vector2d(0, 0)},
+                                    std::pair{std::string("off_centre"), Eigen::Vector2d(2.5, -2.0)}}) {
+    const auto check = [&](const Reconstruction& r, const std::string& what) {
+      EXPECT_LT(r.rmse_mm, kHeightRmseMm) << what << " at the " << name;
+      EXPECT_LT(r.worst_mm, TypeParam::worst_mm) << what << " at the " << name;
+    };
+    for (const auto& [radius, travel] : {std::pair{3.0, 0.5}, std::pair{6.0, 0.6}}) {
+      const std::string what = "ball_" + std::to_string(int(radius)) + "_" + name;
+      const auto r = TestFixture::reconstruct(
+          std::make_shared<simulation::BallIndenter>(radius, Eigen::Vector2d::Zero(), 8.0), place, travel, what);
+      check(r, what);
+      const auto found = imaging::find_ball_press(r.image, *background_, TestFixture::excluded(r.image, *background_),
+                                                  8, radius, 0.06);
+      ASSERT_TRUE(found.circle) << found.why;
+      const auto cap = imaging::score_ball_cap(r.height_mm, *found.circle, radius, 0.06);
+      std::cout << "  radius from its cap " << cap.fitted_radius_mm << " mm\n";
+      EXPECT_NEAR(cap.fitted_radius_mm, radius, kRadiusShare * radius) << what;
+    }
+    check(TestFixture::reconstruct(
+              std::make_shared<simulation::RodIndenter>(2.5, Eigen::Vector2d(-3, 0), Eigen::Vector2d(3, 0), 8.0),
+              place, 0.5, "rod_" + name),
+          "rod");
+    check(TestFixture::reconstruct(
+              std::make_shared<simulation::TextRelief>("TC", 6.0, 0.6, 0.35, 0.25, Eigen::Vector2d::Zero()), place,
+              0.25, "text_" + name),
+          "letters");
   }
-  const auto rod = reconstruct(
-      std::make_shared<simulation::RodIndenter>(2.5, Eigen::Vector2d(-3, 0), Eigen::Vector2d(3, 0), 8.0), 0.5, "rod");
-  EXPECT_LT(rod.rmse_mm, TypeParam::height_rmse_mm);
-  const auto text = reconstruct(
-      std::make_shared<simulation::TextRelief>("TC", 6.0, 0.6, 0.35, 0.25, Eigen::Vector2d::Zero()), 0.25, "text");
-  EXPECT_LT(text.rmse_mm, TypeParam::height_rmse_mm);
 }

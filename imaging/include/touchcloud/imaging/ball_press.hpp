@@ -11,6 +11,8 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "touchcloud/imaging/excluded_pixels.hpp"
+
 namespace touchcloud::imaging {
 
 struct ContactCircle {
@@ -42,13 +44,22 @@ enum class CircleMethod { EdgeFit, EqualArea };
 BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference, double detect_grey,
                                  double ball_radius_mm, double mm_per_px,
                                  CircleMethod method = CircleMethod::EdgeFit);
+// The same where the `excluded` pixels (marker dots' ink) take the
+// difference around them (excluded_pixels.hpp): a dot moved by the press
+// beside the contact is no part of it, one on its rim no notch.
+BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference, const ExcludedPixels& excluded,
+                                 double detect_grey, double ball_radius_mm, double mm_per_px,
+                                 CircleMethod method = CircleMethod::EdgeFit);
 
 // Samples: colour differences (R, G, B) and the ball's gradient (dH/dx,
 // dH/dy) of every pixel within `inner` times the contact radius, and zero
 // gradients on a ring from `flat_from` to `flat_to` times it (every
-// `flat_stride` pixels), inside the image.
-void ball_samples(const cv::Mat& image, const cv::Mat& reference, const ContactCircle& press, double ball_radius_mm,
-                  double mm_per_px, std::vector<Eigen::Vector3d>& difference, std::vector<Eigen::Vector2d>& gradient,
+// `flat_stride` pixels), inside the image. Pixels where `excluded` (CV_8UC1,
+// or empty: none) is set give no sample: a marker dot's ink, whose colour is
+// no shading (a fill there only guesses it).
+void ball_samples(const cv::Mat& image, const cv::Mat& reference, const cv::Mat& excluded, const ContactCircle& press,
+                  double ball_radius_mm, double mm_per_px, std::vector<Eigen::Vector3d>& difference,
+                  std::vector<Eigen::Vector2d>& gradient,
                   double inner = 0.9, double flat_from = 1.3, double flat_to = 1.6, int flat_stride = 3);
 
 // A reconstructed height map (CV_32FC1, mm) against the ideal cap of a ball

@@ -8,6 +8,10 @@
 // exceeds `contact_height_mm` and the (smoothed) difference exceeds
 // `contact_grey`.
 //
+// Pixels a caller excludes (a marker dot's ink: its colour is no shading)
+// get no gradient of their own: each takes the mean gradient of the kept
+// pixels around it (excluded_pixels.hpp).
+//
 // The border: `zero` (the usual assumption, the DST solver) takes the height
 // as zero on the image's border, which holds while the contact stays inside
 // the image; `free` (the DCT solver) assumes nothing there and fixes the
@@ -23,6 +27,7 @@
 
 #include "touchcloud/imaging/dct_poisson.hpp"
 #include "touchcloud/imaging/dst_poisson.hpp"
+#include "touchcloud/imaging/excluded_pixels.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 
 namespace touchcloud::imaging {
@@ -49,15 +54,20 @@ class PhotometricDepthSolver {
   const sensor::PhotometricCalibration& calibration() const { return calibration_; }
   // image, reference: CV_8UC3 BGR of the calibration's size (checked by the caller).
   DepthResult solve(const cv::Mat& image, const cv::Mat& reference);
+  // The same with the `excluded` pixels' gradients filled from around them.
+  DepthResult solve(const cv::Mat& image, const cv::Mat& reference, const ExcludedPixels& excluded);
 
  private:
   sensor::PhotometricCalibration calibration_;
   DepthOptions options_;
   std::unique_ptr<DstPoisson> zero_border_;
   std::unique_ptr<DctPoisson> free_border_;
+  void gradients(const cv::Mat& image, const cv::Mat& reference, DepthResult& out);
+  DepthResult integrate(DepthResult out);
   std::vector<std::array<int, 3>> exponents_;  // the polynomial's terms: powers of r, g, b
   cv::Mat p_, q_;  // staggered gradients, reused
   cv::Mat gx_, gy_, difference_, height_;  // scratch of one frame, reused
+  ExcludedFill excluded_fill_;
 };
 
 }  // namespace touchcloud::imaging

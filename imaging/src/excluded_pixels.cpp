@@ -1,0 +1,78 @@
+#include "touchcloud/imaging/excluded_pixels.hpp"
+
+#include <vector>
+
+namespace touchcloud::imaging {
+
+namespace {
+
+// The fields filled together: they share the excluded pixels and the sweeps.
+template <typename T>
+void fill_fields(const cv::Mat& mask, int sweeps, const std::vector<cv::Mat*>& fields, std::vector<int>& excluded,
+                 std::vector<int>& edge) {
+  const int w = mask.cols, h = mask.rows;
+  std::vector<T*> f;
+  for (cv::Mat* m : fields) f.push_back(m->ptr<T>());
+  excluded.clear();
+  edge.clear();
+  // Start: along each row, the straight line between the kept pixels either
+  // side of a run of excluded ones (the kept one where the run meets the
+  // image's end).
+  for (int v = 0; v < h; ++v) {
+    const std::uint8_t* m = mask.ptr<std::uint8_t>(v);
+    for (int u = 0; u < w;) {
+      if (!m[u]) {
+        ++u;
+        continue;
+      }
+      int end = u;
+      while (end < w && m[end]) ++end;  // the run is [u, end)
+      const int row = v * w;
+      for (T* g : f) {
+        const double left = u > 0 ? g[row + u - 1] : end < w ? g[row + end] : 0.0;
+        const double right = end < w ? g[row + end] : left;
+        for (int x = u; x < end; ++x)
+          g[row + x] = static_cast<T>(left + (right - left) * (x - u + 1) / (end - u + 1));
+      }
+      for (int x = u; x < end; ++x)
+        (v == 0 || v == h - 1 || x == 0 || x == w - 1 ? edge : excluded).push_back(row + x);
+      u = end;
+    }
+  }
+  // Then sweeps towards the harmonic fill (Gauss-Seidel, 4-neighbour mean),
+  // which carries a slope across a dot in any direction as a plane would.
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (T* g : f)
+      for (const int p : excluded) g[p] = static_cast<T>(0.25 * (double(g[p - 1]) + g[p + 1] + g[p - w] + g[p + w]));
+    for (const int p : edge) {  // on the image's border: the neighbours it has
+      const int u = p % w, v = p / w;
+      for (T* g : f) {
+        double sum = 0;
+        int n = 0;
+        if (u > 0) sum += g[p - 1], ++n;
+        if (u + 1 < w) sum += g[p + 1], ++n;
+        if (v > 0) sum += g[p - w], ++n;
+        if (v + 1 < h) sum += g[p + w], ++n;
+        g[p] = static_cast<T>(sum / n);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void ExcludedFill::fill(const ExcludedPixels& excluded, std::initializer_list<cv::Mat*> fields) {
+  CV_Assert(excluded.mask.type() == CV_8UC1 && excluded.mask.isContinuous() && excluded.window_px >= 3 &&
+            excluded.window_px % 2 == 1 && fields.size() >= 1);
+  const int type = (*fields.begin())->type();
+  for (cv::Mat* f : fields)
+    CV_Assert(f->type() == type && (type == CV_32FC1 || type == CV_64FC1) && f->isContinuous() &&
+              f->size() == excluded.mask.size());
+  const std::vector<cv::Mat*> all(fields);
+  if (type == CV_64FC1)
+    fill_fields<double>(excluded.mask, excluded.window_px, all, excluded_, edge_);
+  else
+    fill_fields<float>(excluded.mask, excluded.window_px, all, excluded_, edge_);
+}
+
+}  // namespace touchcloud::imaging

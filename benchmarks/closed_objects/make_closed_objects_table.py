@@ -239,8 +239,12 @@ def main():
                 with open(os.path.join(out, "failure.txt")) as f:
                     stderr = f.read()
                 lines = stderr.strip().splitlines() or ["(no message)"]
-                why = next((l for l in lines if l.startswith("touchcloud: error: ")), lines[-1])
-                why = why.removeprefix("touchcloud: error: ")
+                # The located error first ("FILE:LINE:COL: error: stage ..."), else the
+                # closing "touchcloud: error: ..." line (a validation's count of problems).
+                errors = [l for l in lines if ": error: " in l or l.startswith("touchcloud: error: ")]
+                located = [l for l in errors if not l.startswith("touchcloud: error: ")]
+                why = (located or errors or lines[-1:])[0]
+                why = why.split("error: ", 1)[1] if "error: " in why else why
                 failures.append({"shape": shape, "method": method, "seed": seed, "failure": why})
                 rows.append({"shape": shape, "method": method, "seed": seed, "failure": why})
                 continue

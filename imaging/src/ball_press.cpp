@@ -15,13 +15,14 @@ Eigen::Vector3d difference_rgb(const cv::Vec3b& a, const cv::Vec3b& b) {
 }
 
 // The least-squares circle (Kasa's algebraic fit: x^2 + y^2 + D x + E y + F
-// = 0, linear in D, E, F) through the points. Every edge pixel counts, so
+// = 0, linear in D, E, F) through the points. Every edge point counts, so
 // noise along the edge averages out, where OpenCV's minEnclosingCircle is
 // set by the outermost few pixels (one noise speck joined to the region
 // widens it) and fitEllipse answers with two axes for a shape that is round.
 // The edge spans the whole circle here, where the algebraic fit is unbiased
 // in practice.
-ContactCircle fit_circle(const std::vector<cv::Point>& edge) {
+template <typename Point>
+ContactCircle fit_circle(const std::vector<Point>& edge) {
   Eigen::MatrixXd a(edge.size(), 3);
   Eigen::VectorXd b(edge.size());
   for (std::size_t i = 0; i < edge.size(); ++i) {
@@ -34,6 +35,73 @@ ContactCircle fit_circle(const std::vector<cv::Point>& edge) {
   circle.centre_px = -0.5 * def.head<2>();
   circle.radius_px = std::sqrt(std::max(0.0, circle.centre_px.squaredNorm() - def[2]));
   return circle;
+}
+
+// The circle refitted without the points more than 1.5 px off it: a speck
+// or a marker's residue joined to the region bulges its edge outwards.
+template <typename Point>
+ContactCircle fit_circle_without_outliers(const std::vector<Point>& edge) {
+  const ContactCircle first = fit_circle(edge);
+  std::vector<Point> on_circle;
+  for (const Point& p : edge)
+    if (std::abs(std::hypot(p.x - first.centre_px.x(), p.y - first.centre_px.y()) - first.radius_px) < 1.5)
+      on_circle.push_back(p);
+  return on_circle.size() >= 8 ? fit_circle(on_circle) : first;
+}
+
+// The rim to a fraction of a pixel. The region's edge lies where the
+// difference (blurred by the optics and the 3 x 3 mean) falls below
+// detect_grey, about a pixel outside the rim, where it falls from the cap's
+// level to the flat gel's. Along rays from the first circle's centre, each
+// rim point is where the unblurred `difference` (CV_32FC1) crosses halfway
+// between its level just inside (2.5-4 px inside the first circle) and just
+// outside (2.5-4 px beyond it), linearly interpolated; a ray whose levels
+// differ by no more than `detect_grey`, or that leaves the image, gives none.
+std::vector<cv::Point2d> rim_points(const cv::Mat& difference, const cv::Mat& excluded, const ContactCircle& first,
+                                    double detect_grey) {
+  constexpr double step = 0.25, near = 2.5, far = 4.0;
+  const int samples = static_cast<int>(2 * far / step) + 1;
+  const int rays = std::max(64, static_cast<int>(std::lround(2 * M_PI * first.radius_px)));
+  std::vector<cv::Point2d> rim;
+  std::vector<double> profile(samples);
+  for (int k = 0; k < rays; ++k) {
+    const double angle = 2 * M_PI * k / rays, cu = std::cos(angle), sv = std::sin(angle);
+    const auto at = [&](int i) { return first.radius_px - far + i * step; };
+    bool inside = true;
+    for (int i = 0; i < samples && inside; ++i) {
+      const double u = first.centre_px.x() + at(i) * cu, v = first.centre_px.y() + at(i) * sv;
+      const int u0 = static_cast<int>(std::floor(u)), v0 = static_cast<int>(std::floor(v));
+      inside = at(i) > 0 && u0 >= 0 && v0 >= 0 && u0 + 1 < difference.cols && v0 + 1 < difference.rows;
+      if (!inside) break;
+      const double fu = u - u0, fv = v - v0;
+      if (!excluded.empty() && (excluded.at<std::uint8_t>(v0, u0) || excluded.at<std::uint8_t>(v0, u0 + 1) ||
+                                excluded.at<std::uint8_t>(v0 + 1, u0) || excluded.at<std::uint8_t>(v0 + 1, u0 + 1))) {
+        inside = false;
+        break;
+      }
+      const float* row0 = difference.ptr<float>(v0);
+      const float* row1 = difference.ptr<float>(v0 + 1);
+      profile[i] = (1 - fv) * ((1 - fu) * row0[u0] + fu * row0[u0 + 1]) + fv * ((1 - fu) * row1[u0] + fu * row1[u0 + 1]);
+    }
+    if (!inside) continue;
+    double in = 0, out = 0;
+    int n = 0;
+    for (int i = 0; at(i) <= first.radius_px - near + 1e-9; ++i, ++n) {
+      in += profile[i];
+      out += profile[samples - 1 - i];
+    }
+    in /= n;
+    out /= n;
+    if (in - out <= detect_grey) continue;
+    const double half = 0.5 * (in + out);
+    for (int i = 1; i < samples; ++i)
+      if (profile[i - 1] >= half && profile[i] < half) {
+        const double r = at(i - 1) + step * (profile[i - 1] - half) / (profile[i - 1] - profile[i]);
+        rim.emplace_back(first.centre_px.x() + r * cu, first.centre_px.y() + r * sv);
+        break;
+      }
+  }
+  return rim;
 }
 
 }  // namespace
@@ -69,6 +137,8 @@ BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference,
     largest.convertTo(largest, CV_32FC1);
     ExcludedFill().fill(excluded, {&largest});
   }
+  cv::Mat unblurred;  // for the rim, in grey levels
+  if (method == CircleMethod::EdgeFit) largest.convertTo(unblurred, CV_32FC1);
   cv::blur(largest, largest, cv::Size(3, 3));
   const cv::Mat mask = largest > detect_grey;
   cv::Mat labels, stats, centroids;
@@ -96,14 +166,9 @@ BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference,
                                         [](const auto& a, const auto& b) { return a.size() < b.size(); });
     if (outer == contours.end() || outer->size() < 8)
       return refuse(PressRefusal::NoContact, "the differing region is a few pixels only");
-    circle = fit_circle(*outer);
-    // Refit without the edge pixels well off the circle: a speck or a
-    // marker's residue joined to the region bulges its edge outwards.
-    std::vector<cv::Point> on_circle;
-    for (const cv::Point& p : *outer)
-      if (std::abs(std::hypot(p.x - circle.centre_px.x(), p.y - circle.centre_px.y()) - circle.radius_px) < 1.5)
-        on_circle.push_back(p);
-    if (on_circle.size() >= 8) circle = fit_circle(on_circle);
+    circle = fit_circle_without_outliers(*outer);
+    if (const auto rim = rim_points(unblurred, excluded.mask, circle, detect_grey); rim.size() >= 8)
+      circle = fit_circle_without_outliers(rim);
   }
   if (circle.radius_px * mm_per_px >= 0.95 * ball_radius_mm)
     return refuse(PressRefusal::TooBig, "the contact circle (radius " + std::to_string(circle.radius_px * mm_per_px) +

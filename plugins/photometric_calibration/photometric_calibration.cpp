@@ -94,8 +94,9 @@ class PhotometricCalibrationStage final : public Stage {
         .doc("a pixel belongs to the press where its largest channel difference (3 x 3 mean) exceeds this");
     p.add("circle", circle_method_, imaging::CircleMethod::EdgeFit,
           {{"edge_fit", imaging::CircleMethod::EdgeFit}, {"equal_area", imaging::CircleMethod::EqualArea}})
-        .doc("edge_fit: a least-squares circle through the pressed region's outer edge; equal_area: its centroid "
-             "and the radius of a disc of its area (smaller where the cap's flat middle leaves a hole)");
+        .doc("edge_fit: a least-squares circle through the pressed region's outer edge, then through the rim "
+             "where the difference falls halfway from inside to outside the edge; equal_area: its centroid and the "
+             "radius of a disc of its area (smaller where the cap's flat middle leaves a hole)");
     p.add("corrections", corrections_file_).input_file()
         .doc("CSV of hand-set circles by image file name: 'image, centre_u_px, centre_v_px, radius_px' or "
              "'image, skip' per line ('#' comments), used where the found circle is wrong");

@@ -9,6 +9,7 @@
 // reconstructions.
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -81,27 +82,33 @@ void score_against_truth(Reconstruction& r, const std::string& name) {
             << deepest << " mm), largest error " << r.worst_mm << " mm\n";
 }
 
-// Tolerances per case, from what was measured (see the tests), about twice
-// the worst error. With dots (0.5 mm, 2 mm apart) masked, the calibration
-// takes no sample on a dot's ink and each of those pixels takes the
-// gradients around it in the reconstructions (imaging/excluded_pixels.hpp),
-// and the errors come close to a gel without dots: caps 0.075 / 0.085 mm
-// (0.047 / 0.058 without dots), ball radius 4.019 / 4.095 mm, held-out
-// heights at most 0.016 mm (0.013 without), radii from the caps 2.3-2.7 %
-// small, largest error anywhere 0.082 mm (0.020 without), so both cases
-// share the tolerances but the largest error. The mask is what holds them:
-// with the dots left in the held-out images (the calibration's mask kept),
-// the dots that move with the gel integrate to bumps, height RMSE
-// 0.035-0.11 mm and largest errors 0.47-0.94 mm.
+// Tolerances per case, from what was measured (see the tests), 1.3 to 2
+// times the worst error. With dots (0.5 mm, 2 mm apart) masked, the
+// calibration takes no sample on a dot's ink, its contact circles read no
+// rim across a dot, and each dot's pixel takes the gradients around it in
+// the reconstructions (imaging/excluded_pixels.hpp). Measured with dots
+// (without): contact circles 0.108-0.122 px wider than the true contact
+// (0.115-0.124 px), caps 0.026 / 0.038 mm (0.014 / 0.023 mm), ball radius
+// 4.011 / 4.088 mm (3.997 / 4.076 mm), held-out heights at most 0.017 mm
+// (0.0125 mm), radii from the caps 2.3-2.7 % small, largest error anywhere
+// 0.081 mm (0.020 mm). The mask is what holds them: with the dots left in
+// the held-out images (the calibration's mask kept), the dots that move
+// with the gel integrate to bumps, height RMSE 0.035-0.11 mm and largest
+// errors 0.47-0.94 mm. These tolerances do not catch dots left unmasked
+// everywhere (calibration and reconstructions, `markers: none`): on these
+// simulated dots, darkening the shading in the image and the background
+// alike, the polynomial fitted over the dots' pixels too reads them as
+// little slope, and the figures come out no worse than masked (caps 0.025 /
+// 0.036 mm, held-out heights at most 0.0098 mm, largest error 0.048 mm).
 struct MarkersOff {
   static constexpr bool on = false;
-  static constexpr double worst_mm = 0.05;
+  static constexpr double cap_rmse_mm = 0.035, worst_mm = 0.04;
 };
 struct MarkersOn {
   static constexpr bool on = true;
-  static constexpr double worst_mm = 0.15;
+  static constexpr double cap_rmse_mm = 0.05, worst_mm = 0.12;
 };
-constexpr double kCapRmseMm = 0.1, kBallRadiusToleranceMm = 0.15, kHeightRmseMm = 0.03, kRadiusShare = 0.05;
+constexpr double kBallRadiusToleranceMm = 0.12, kHeightRmseMm = 0.025, kRadiusShare = 0.05, kCircleTolerancePx = 0.2;
 
 template <typename Markers>
 class CalibrateFromBallPresses : public ::testing::Test {
@@ -124,10 +131,15 @@ class CalibrateFromBallPresses : public ::testing::Test {
     dir_ = new test::TempDir;
     simulation::GelSightSimulation sim(realistic_scene(*dir_, Markers::on), 47);
     fs::create_directories(*dir_ / "presses");
+    contact_radius_px_ = new std::vector<double>;
     int k = 0;
-    for (const auto& xy : simulation::ball_press_targets(sim.sensor(), 8, 2.6))
-      written_and_read(simulation::press_and_render(sim, xy, 0.7).image.image,
-                       *dir_ / "presses" / ("press_" + std::to_string(++k) + ".png"));
+    for (const auto& xy : simulation::ball_press_targets(sim.sensor(), 8, 2.6)) {
+      const auto press = simulation::press_and_render(sim, xy, 0.7);
+      written_and_read(press.image.image, *dir_ / "presses" / ("press_" + std::to_string(++k) + ".png"));
+      double deepest = 0;  // the true contact: the ball's cap that deep
+      cv::minMaxLoc(press.truth.height_mm, nullptr, &deepest);
+      contact_radius_px_->push_back(std::sqrt(deepest * (2 * kBallRadiusMm - deepest)) / sim.sensor().mm_per_px);
+    }
     background_ = new cv::Mat(written_and_read(sim.render_reference().image, *dir_ / "background.png"));
     PluginRegistry registry;
     std::vector<Override> overrides = {{"background.path", (*dir_ / "background.png").string()},
@@ -142,6 +154,7 @@ class CalibrateFromBallPresses : public ::testing::Test {
   }
   static void TearDownTestSuite() {
     delete record_;
+    delete contact_radius_px_;
     delete background_;
     delete dir_;
   }
@@ -170,6 +183,7 @@ class CalibrateFromBallPresses : public ::testing::Test {
   static test::TempDir* dir_;
   static cv::Mat* background_;
   static RunRecord* record_;
+  static std::vector<double>* contact_radius_px_;  // press_k.png's true contact, k from 1
 };
 template <typename Markers>
 test::TempDir* CalibrateFromBallPresses<Markers>::dir_ = nullptr;
@@ -177,6 +191,8 @@ template <typename Markers>
 cv::Mat* CalibrateFromBallPresses<Markers>::background_ = nullptr;
 template <typename Markers>
 RunRecord* CalibrateFromBallPresses<Markers>::record_ = nullptr;
+template <typename Markers>
+std::vector<double>* CalibrateFromBallPresses<Markers>::contact_radius_px_ = nullptr;
 
 using MarkerCases = ::testing::Types<MarkersOff, MarkersOn>;
 TYPED_TEST_SUITE(CalibrateFromBallPresses, MarkerCases);
@@ -192,13 +208,33 @@ TYPED_TEST(CalibrateFromBallPresses, FindsEveryPressAndGivesTheBallsRadiusBack) 
   std::cout << "cap RMSE " << metric("cap_rmse_mm") << " mm fitted, " << metric("holdout_cap_rmse_mm")
             << " mm held out; ball radius " << metric("ball_radius_fit_mm") << " mm fitted, "
             << metric("holdout_ball_radius_fit_mm") << " mm held out\n";
-  // Measured: 0.047 mm fitted and 0.058 mm held out on caps about 0.7 mm
-  // deep, radius 3.997 and 4.075 mm (the outer presses, where vignetting dims
-  // the contact most, are the worst). Tolerances: about twice the errors.
-  EXPECT_LT(metric("cap_rmse_mm"), kCapRmseMm);
-  EXPECT_LT(metric("holdout_cap_rmse_mm"), kCapRmseMm);
+  // Measured: see the tolerances; the outer presses, where vignetting dims
+  // the contact most, are the worst.
+  EXPECT_LT(metric("cap_rmse_mm"), TypeParam::cap_rmse_mm);
+  EXPECT_LT(metric("holdout_cap_rmse_mm"), TypeParam::cap_rmse_mm);
   EXPECT_NEAR(metric("ball_radius_fit_mm"), kBallRadiusMm, kBallRadiusToleranceMm);
   EXPECT_NEAR(metric("holdout_ball_radius_fit_mm"), kBallRadiusMm, kBallRadiusToleranceMm);
+  // Each circle against the true contact (ball_presses.csv: image, status,
+  // role, centre u, v, radius px, ...). The pressed region's edge lies about
+  // a pixel outside the rim (where the difference falls below detect_grey),
+  // which made the ideal caps the circles give 0.04 mm too deep; a rim read
+  // across a dot's filled pixels lies 0.1 px further out.
+  std::istringstream table(test::read_file(dir_->path() / "out/ball_presses.csv"));
+  std::string line;
+  std::getline(table, line);
+  int rows = 0;
+  while (std::getline(table, line)) {
+    std::vector<std::string> field;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) field.push_back(cell);
+    ASSERT_GE(field.size(), 6u) << line;
+    const int k = std::stoi(field[0].substr(std::string("press_").size()));
+    const double truth = TestFixture::contact_radius_px_->at(k - 1);
+    std::cout << field[0] << ": contact radius " << field[5] << " px, true " << truth << " px\n";
+    EXPECT_NEAR(std::stod(field[5]), truth, kCircleTolerancePx) << field[0];
+    ++rows;
+  }
+  EXPECT_EQ(rows, 8);
   EXPECT_TRUE(fs::exists(dir_->path() / "out/ball_presses.csv"));
   EXPECT_TRUE(fs::exists(dir_->path() / "out/ball_presses.png"));
 }
@@ -213,8 +249,8 @@ TYPED_TEST(CalibrateFromBallPresses, ReconstructsHeldOutIndentersWithinTolerance
   // 0.6 mm error: not asserted.
   // Measured height RMSE in the contact without dots: 0.010 mm (3 mm ball),
   // 0.013 mm (6 mm ball), 0.006 mm (rod), 0.002 mm (letters) at the centre,
-  // on contacts 0.32-0.68 mm deep; the tolerance, 0.03 mm (under 10 % of the
-  // shallowest), is more than twice the worst. Balls of other radii: the
+  // on contacts 0.32-0.68 mm deep; the tolerance, 0.025 mm (under 8 % of the
+  // shallowest), is twice the worst without dots, 1.5 times with. Balls of other radii: the
   // radius from a sphere fitted to the reconstructed cap in the circle the
   // finder gives came back 2.5-3 % small: within 5 %.
   for (const auto& [name, place] : {std::pair{std::string("centre"), Eigen::Vector2d(0, 0)},

@@ -32,8 +32,12 @@ struct BallPressFinding {
 
 // How the circle is taken from the pressed region: `edge_fit` a
 // least-squares circle through its outer edge (holes and noise inside do not
-// move it); `equal_area` its centroid and the radius of a disc of its area
-// (smaller than the contact where the cap's flat middle leaves a hole).
+// move it), then through the rim found to a fraction of a pixel along rays
+// across that edge, where the difference falls halfway from its level just
+// inside to the flat gel's just outside (the edge at detect_grey lies about
+// a pixel outside the rim); `equal_area` its centroid and the radius of a
+// disc of its area (smaller than the contact where the cap's flat middle
+// leaves a hole).
 enum class CircleMethod { EdgeFit, EqualArea };
 
 // The contact circle of a ball pressed into `image` against `reference`
@@ -46,7 +50,9 @@ BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference,
                                  CircleMethod method = CircleMethod::EdgeFit);
 // The same where the `excluded` pixels (marker dots' ink) take the
 // difference around them (excluded_pixels.hpp): a dot moved by the press
-// beside the contact is no part of it, one on its rim no notch.
+// beside the contact is no part of it, one on its rim no notch; and no rim
+// point is read on a ray across them (the fill there puts the rim about
+// 0.1 px further out).
 BallPressFinding find_ball_press(const cv::Mat& image, const cv::Mat& reference, const ExcludedPixels& excluded,
                                  double detect_grey, double ball_radius_mm, double mm_per_px,
                                  CircleMethod method = CircleMethod::EdgeFit);

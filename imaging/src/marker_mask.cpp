@@ -1,5 +1,6 @@
 #include "touchcloud/imaging/marker_mask.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -16,8 +17,7 @@ MarkerMask::MarkerMask(MarkerMaskOptions options) : options_(options), detector_
   window_ = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(w, w));  // separable: fast
 }
 
-void MarkerMask::add_discs(const std::vector<Marker>& markers, cv::Mat& mask) const {
-  const double radius = disc_radius();
+void MarkerMask::add_discs(const std::vector<Marker>& markers, double radius, cv::Mat& mask) const {
   constexpr int kShift = 4;  // sub-pixel centres for cv::circle
   for (const Marker& m : markers)
     cv::circle(mask, cv::Point(cvRound(m.centre_px.x() * (1 << kShift)), cvRound(m.centre_px.y() * (1 << kShift))),
@@ -34,10 +34,41 @@ void MarkerMask::ink(const cv::Mat& bgr, cv::Mat& out) {
 void MarkerMask::dot_mask(const cv::Mat& bgr, const std::vector<Marker>& dots, cv::Mat& mask) {
   discs_.create(bgr.size(), CV_8UC1);
   discs_.setTo(0);
-  add_discs(dots, discs_);
+  add_discs(dots, disc_radius(), discs_);
   ink(bgr, mask);
   cv::bitwise_and(mask, discs_, mask);
   cv::dilate(mask, mask, cv::Mat());
+}
+
+void MarkerMask::add_lost_dots(const cv::Mat& image, const std::vector<Marker>& dots, cv::Mat& mask) {
+  const double reach = options_.detector.max_diameter_px, reach2 = reach * reach;
+  lost_.clear();
+  for (const Marker& r : reference_dots_)
+    if (std::none_of(dots.begin(), dots.end(),
+                     [&](const Marker& d) { return (d.centre_px - r.centre_px).squaredNorm() <= reach2; }))
+      lost_.push_back(r);
+  if (lost_.empty()) return;
+  discs_.setTo(0);
+  add_discs(lost_, disc_radius() + reach, discs_);
+  // Ink: darker than the closing by kInkShare of it in every channel. The
+  // press's shading darkens one or two channels and lightens another; the
+  // ink darkens all three alike.
+  constexpr double kInkShare = 0.4;
+  cv::morphologyEx(image, closed_colour_, cv::MORPH_CLOSE, window_);
+  lost_ink_.create(image.size(), CV_8UC1);
+  for (int v = 0; v < image.rows; ++v) {
+    const cv::Vec3b* a = image.ptr<cv::Vec3b>(v);
+    const cv::Vec3b* c = closed_colour_.ptr<cv::Vec3b>(v);
+    const std::uint8_t* disc = discs_.ptr<std::uint8_t>(v);
+    std::uint8_t* ink = lost_ink_.ptr<std::uint8_t>(v);
+    for (int u = 0; u < image.cols; ++u) {
+      bool dark = disc[u] != 0;
+      for (int k = 0; k < 3 && dark; ++k) dark = a[u][k] < (1 - kInkShare) * c[u][k];
+      ink[u] = dark ? 255 : 0;
+    }
+  }
+  cv::dilate(lost_ink_, lost_ink_, cv::Mat());
+  cv::bitwise_or(mask, lost_ink_, mask);
 }
 
 MarkerMasks MarkerMask::masks(const cv::Mat& image, const cv::Mat& reference) {
@@ -54,6 +85,7 @@ MarkerMasks MarkerMask::masks(const cv::Mat& image, const cv::Mat& reference) {
   }
   const std::vector<Marker> dots = detector_.detect(image, "image");
   dot_mask(image, dots, mask_);
+  add_lost_dots(image, dots, mask_);
   cv::bitwise_or(mask_, reference_mask_, union_);
   MarkerMasks out;
   out.excluded.mask = union_;

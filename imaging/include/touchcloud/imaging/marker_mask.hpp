@@ -6,7 +6,8 @@
 // margin around each centre, the pixels darker than a grey closing of the
 // image (square window, the detector's background window: the gel without
 // its dots) by more than `ink_grey`, grown by one pixel for the dot's
-// blurred rim. Only the ink: every pixel masked is shading lost, which
+// blurred rim; a dot found in the reference but lost in the image is
+// looked for near its rest place (add_lost_dots). Only the ink: every pixel masked is shading lost, which
 // matters most where a dot sits on a contact's rim. The depth and the
 // calibration read no colour there (excluded_pixels.hpp): no colour is
 // guessed across a dot, which on a contact's rim gives a slope neither
@@ -46,15 +47,24 @@ class MarkerMask {
   MarkerMasks masks(const cv::Mat& image, const cv::Mat& reference);
 
  private:
-  void add_discs(const std::vector<Marker>& markers, cv::Mat& mask) const;
+  void add_discs(const std::vector<Marker>& markers, double radius, cv::Mat& mask) const;
   void ink(const cv::Mat& bgr, cv::Mat& out);  // 255 where darker than the closing by more than ink_grey
   void dot_mask(const cv::Mat& bgr, const std::vector<Marker>& dots, cv::Mat& mask);  // the dots' ink
+  // A dot of the reference with none of the image's within the largest dot's
+  // diameter (a pressed dot moves less): the detector lost it, as where the
+  // press shades the gel around it dark and the dot's blob merges with the
+  // shade. Its ink left in would integrate to a bump: within that reach of
+  // its rest place, the pixels darker in every channel than the colour
+  // closing are added to `mask`.
+  void add_lost_dots(const cv::Mat& image, const std::vector<Marker>& dots, cv::Mat& mask);
   double disc_radius() const { return 0.5 * options_.detector.max_diameter_px + options_.margin_px; }
 
   MarkerMaskOptions options_;
   MarkerDetector detector_;
   cv::Mat reference_seen_;     // a copy of the reference whose dots are kept
   std::vector<Marker> reference_dots_;
+  std::vector<Marker> lost_;  // scratch
+  cv::Mat closed_colour_, lost_ink_;
   cv::Mat window_;  // the closing's structuring element (the detector's background window)
   cv::Mat reference_mask_;  // of the kept reference
   cv::Mat grey_, closed_, discs_, mask_, union_;

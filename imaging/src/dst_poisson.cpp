@@ -21,21 +21,6 @@ bool smooth(int n) {
   return n == 1;
 }
 
-// sum_i a_i b_i in four running sums: no add waits on the one before, as
-// one running sum's would.
-double dot(const double* a, const double* b, int n) {
-  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    s0 += a[i] * b[i];
-    s1 += a[i + 1] * b[i + 1];
-    s2 += a[i + 2] * b[i + 2];
-    s3 += a[i + 3] * b[i + 3];
-  }
-  for (; i < n; ++i) s0 += a[i] * b[i];
-  return (s0 + s1) + (s2 + s3);
-}
-
 }  // namespace
 
 DstPoisson::DstPoisson(int width_px, int height_px)
@@ -191,13 +176,23 @@ void DstPoisson::cancel_extra_columns() {
   for (int a = 0; a < extra; ++a) {
     const double* sine = extra_sine_.ptr<double>(a);
     double* height = extra_height_.ptr<double>(a);
-    for (int l = 0; l < ny_; ++l) height[l] = dot(sine, spectrum_.ptr<double>(l), columns_) * per_column;
+    for (int l = 0; l < ny_; ++l) {
+      const double* row = spectrum_.ptr<double>(l);
+      double sum = 0;
+      for (int k = 0; k < columns_; ++k) sum += sine[k] * row[k];
+      height[l] = sum * per_column;
+    }
   }
   // Into the column modes, each mode's extra x extra inverse, and back.
   std::vector<double> in_modes(static_cast<std::size_t>(extra) * ny_), cancelling(in_modes.size());
   for (int j = 0; j < ny_; ++j) {
     const double* mode = column_modes_.ptr<double>(j);
-    for (int a = 0; a < extra; ++a) in_modes[a * ny_ + j] = dot(mode, extra_height_.ptr<double>(a), ny_);
+    for (int a = 0; a < extra; ++a) {
+      const double* height = extra_height_.ptr<double>(a);
+      double sum = 0;
+      for (int l = 0; l < ny_; ++l) sum += mode[l] * height[l];
+      in_modes[a * ny_ + j] = sum;
+    }
     const double* inverse = response_inverse_.ptr<double>(j);
     for (int b = 0; b < extra; ++b) {
       double sum = 0;

@@ -95,11 +95,11 @@ void score_against_truth(Reconstruction& r, const std::string& name) {
 // calibration takes no sample on a dot's ink, its contact circles read no
 // rim across a dot, and each dot's pixel takes the gradients around it in
 // the reconstructions (imaging/excluded_pixels.hpp). Measured with dots
-// (without): contact circles 0.108-0.122 px wider than the true contact
+// (without): contact circles 0.109-0.123 px wider than the true contact
 // (0.115-0.124 px), caps 0.026 / 0.038 mm (0.014 / 0.023 mm), ball radius
-// 4.011 / 4.088 mm (3.997 / 4.076 mm), held-out heights at most 0.017 mm
-// (0.0125 mm), radii from the caps 2.3-2.7 % small, largest error anywhere
-// 0.081 mm (0.020 mm). The mask is what holds them: with the dots left in
+// 4.013 / 4.089 mm (3.997 / 4.076 mm), held-out heights at most 0.016 mm
+// (0.0125 mm), radii from the caps 1.6-2.8 % small (2.0-2.9 %), largest
+// error anywhere 0.068 mm (0.020 mm). The mask is what holds them: with the dots left in
 // the held-out images (the calibration's mask kept), the dots that move
 // with the gel integrate to bumps, height RMSE 0.035-0.11 mm and largest
 // errors 0.47-0.94 mm. These tolerances do not catch dots left unmasked
@@ -298,14 +298,14 @@ TYPED_TEST(CalibrateFromBallPresses, ReconstructsHeldOutIndentersWithinTolerance
 TYPED_TEST(CalibrateFromBallPresses, ReconstructsIndentersFarOffCentre) {
   // The pad's centre 4 mm and -3 mm off each indenter: the contact near the
   // image's corner, where the vignetting dims it most. Measured height RMSE
-  // without dots (with): 3 mm ball 0.0029 mm (0.0028), 6 mm ball 0.0023 mm
-  // (0.019), rod 0.011 mm (0.018); largest errors 0.012-0.026 mm
-  // (0.013-0.052). There the marker detector loses, in the image, dots that
+  // without dots (with): 3 mm ball 0.0029 mm (0.0029), 6 mm ball 0.0023 mm
+  // (0.015), rod 0.011 mm (0.019); largest errors 0.012-0.026 mm
+  // (0.013-0.050). There the marker detector loses, in the image, dots that
   // the press moved within the contact's dark upper side (1 and 5 of the 63
   // it finds in the background); the mask looks for their ink near their
   // rest places (imaging/marker_mask.hpp), without which it stays in and
-  // integrates to bumps: 3 mm ball 0.041 mm, largest error 0.23 mm; rod
-  // 0.063 mm, 0.51 mm.
+  // integrates to bumps: 3 mm ball 0.047 mm, largest error 0.24 mm; rod
+  // 0.068 mm, 0.52 mm.
   const Eigen::Vector2d place(4.0, -3.0);
   const auto check = [](const Reconstruction& r, const std::string& what) {
     EXPECT_FALSE(r.off_the_image()) << what;
@@ -322,10 +322,10 @@ TYPED_TEST(CalibrateFromBallPresses, ReconstructsIndentersFarOffCentre) {
         "rod");
   // The letters run off the image. The default integration holds the
   // image's border at zero height and pulls the letters down to it: height
-  // RMSE 0.116 mm (0.126 mm with dots), largest error 0.28 mm (0.30 mm).
+  // RMSE 0.116 mm (0.124 mm with dots), largest error 0.28 mm (0.29 mm).
   // photometric_depth's `border: free` (the height's zero on the flat
-  // pixels) is the answer there: 0.0052 mm (0.020 mm), largest error
-  // 0.017 mm (0.079 mm).
+  // pixels) is the answer there: 0.0052 mm (0.016 mm), largest error
+  // 0.017 mm (0.063 mm).
   const auto letters = [&](imaging::PoissonBorder border, const std::string& name) {
     return TestFixture::reconstruct(
         std::make_shared<simulation::TextRelief>("TC", 6.0, 0.6, 0.35, 0.25, Eigen::Vector2d::Zero()), place, 0.25,

@@ -56,7 +56,9 @@ ContactCircle fit_circle_without_outliers(const std::vector<Point>& edge) {
 // rim point is where the unblurred `difference` (CV_32FC1) crosses halfway
 // between its level just inside (2.5-4 px inside the first circle) and just
 // outside (2.5-4 px beyond it), linearly interpolated; a ray whose levels
-// differ by no more than `detect_grey`, or that leaves the image, gives none.
+// differ by no more than `detect_grey`, that leaves the image or that
+// crosses an `excluded` pixel (a dot's ink, its difference only filled in)
+// gives none.
 std::vector<cv::Point2d> rim_points(const cv::Mat& difference, const cv::Mat& excluded, const ContactCircle& first,
                                     double detect_grey) {
   constexpr double step = 0.25, near = 2.5, far = 4.0;

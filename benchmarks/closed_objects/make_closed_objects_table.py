@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """The shipped closed shapes (sample_clouds/closed_objects/) reconstructed
-by four methods with the same seeds: touched from above (at most --touches)
+by five methods with the same seeds: touched from above (at most --touches)
 as the height-field GP of the main job (pipelines/fox_mask_active.yaml, its
 max-variance choice) and as the implicit surface
 (pipelines/closed_object_active.yaml, its variance as a press from above
 meets it); touched from any side (at most --all-sides-touches) as the
 implicit surface with side_touch's choice (pipelines/closed_object_all_sides.yaml),
-by the Palm 2.0's 65 mm dome (scene.yaml) and by a 20 mm fingertip dome
-(scene_fingertip.yaml). Each run is scored against the whole closed mesh
+by the Palm 2.0's 65 mm dome (scene.yaml), by a 20 mm fingertip dome
+(scene_fingertip.yaml), and by the Palm 2.0 as imperfect as the real one
+(pipelines/closed_object_all_sides_realistic.yaml on scene_realistic.yaml:
+the touches read from rendered images). Each run is scored against the whole closed mesh
 after every touch: Eq. 11 (estimate -> object, the mean chamfer), its 95th
 percentile, Hausdorff, completeness (object -> estimate), F-score and
 coverage at --fscore-mm, of the whole object and of what a press from above
@@ -31,8 +33,7 @@ in DIR and a run already there (its summary.json, or the failure.txt of a
 run that failed) is not made again (a seeded run reproduces bit for bit, so
 only its time is the earlier run's): a long table can be finished after it
 was stopped. A run that fails is listed with its error
-and left out of the means; the others are tabulated. The sensor is the simulator's ideal one (the
-closed shapes have no realistic scene).
+and left out of the means; the others are tabulated.
 """
 import argparse
 import csv
@@ -59,6 +60,8 @@ METHODS = {
                   "scene.yaml", True),
     "all_sides_fingertip": ("implicit surface, all sides, 20 mm fingertip", "pipelines/closed_object_all_sides.yaml",
                             "scene_fingertip.yaml", True),
+    "all_sides_realistic": ("implicit surface, all sides, realistic sensor",
+                            "pipelines/closed_object_all_sides_realistic.yaml", "scene_realistic.yaml", True),
 }
 # summary.json metric (score.<name>), column title, decimals in results.md
 METRICS = [("chamfer_est_to_gt", "Eq. 11", 3), ("p95_est_to_gt", "p95", 2), ("hausdorff", "Hausdorff", 1),
@@ -146,7 +149,7 @@ def plot(args, curves):
     for (shape, method), by_touch in curves.items():
         touches = sorted(by_touch)
         # a colour per shape, a line style per method
-        style = (":", "--", "-.", "-")[[name for name, _, _, _ in METHODS.values()].index(method)]
+        style = (":", "--", "-.", "-", (0, (1, 3)))[[name for name, _, _, _ in METHODS.values()].index(method)]
         for ax, name in zip(axes, ("chamfer_est_to_gt", "fscore")):
             ax.plot(touches, [statistics.fmean(by_touch[t][name]) for t in touches], style,
                     color=f"C{SHAPES.index(shape)}", label=f"{shape}, {method.split(' (')[0]}")

@@ -1,5 +1,6 @@
 #include "touchcloud/imaging/excluded_pixels.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace touchcloud::imaging {
@@ -8,12 +9,13 @@ namespace {
 
 // The fields filled together: they share the excluded pixels and the sweeps.
 template <typename T>
-void fill_fields(const cv::Mat& mask, int sweeps, const std::vector<cv::Mat*>& fields, std::vector<int>& excluded,
-                 std::vector<int>& edge) {
+void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>& fields, std::vector<int>& red,
+                 std::vector<int>& black, std::vector<int>& edge) {
   const int w = mask.cols, h = mask.rows;
   std::vector<T*> f;
   for (cv::Mat* m : fields) f.push_back(m->ptr<T>());
-  excluded.clear();
+  red.clear();
+  black.clear();
   edge.clear();
   // Start: along each row, the straight line between the kept pixels either
   // side of a run of excluded ones (the kept one where the run meets the
@@ -35,15 +37,27 @@ void fill_fields(const cv::Mat& mask, int sweeps, const std::vector<cv::Mat*>& f
           g[row + x] = static_cast<T>(left + (right - left) * (x - u + 1) / (end - u + 1));
       }
       for (int x = u; x < end; ++x)
-        (v == 0 || v == h - 1 || x == 0 || x == w - 1 ? edge : excluded).push_back(row + x);
+        (v == 0 || v == h - 1 || x == 0 || x == w - 1 ? edge : (v + x) % 2 == 0 ? red : black).push_back(row + x);
       u = end;
     }
   }
-  // Then sweeps towards the harmonic fill (Gauss-Seidel, 4-neighbour mean),
-  // which carries a slope across a dot in any direction as a plane would.
+  // Then sweeps towards the harmonic fill (the 4-neighbour mean), which
+  // carries a slope across a dot in any direction as a plane would:
+  // successive over-relaxation with the factor that is best for a blob as
+  // wide as the window: half as many sweeps as the window is wide leave under
+  // a tenth of the start's error, where Gauss-Seidel with as many sweeps as
+  // the window is wide leaves a quarter to two thirds of it. In red-black order a pixel's
+  // neighbours all have the other colour, so the updates of one colour do
+  // not wait on each other.
+  const double omega = 2 / (1 + std::sin(M_PI / (window_px + 1)));
+  const int sweeps = (window_px + 1) / 2;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    for (T* g : f)
-      for (const int p : excluded) g[p] = static_cast<T>(0.25 * (double(g[p - 1]) + g[p + 1] + g[p - w] + g[p + w]));
+    for (const std::vector<int>* colour : {&red, &black})
+      for (T* g : f)
+        for (const int p : *colour) {
+          const double mean = 0.25 * (double(g[p - 1]) + g[p + 1] + g[p - w] + g[p + w]);
+          g[p] = static_cast<T>(g[p] + omega * (mean - g[p]));
+        }
     for (const int p : edge) {  // on the image's border: the neighbours it has
       const int u = p % w, v = p / w;
       for (T* g : f) {
@@ -70,9 +84,9 @@ void ExcludedFill::fill(const ExcludedPixels& excluded, std::initializer_list<cv
               f->size() == excluded.mask.size());
   const std::vector<cv::Mat*> all(fields);
   if (type == CV_64FC1)
-    fill_fields<double>(excluded.mask, excluded.window_px, all, excluded_, edge_);
+    fill_fields<double>(excluded.mask, excluded.window_px, all, red_, black_, edge_);
   else
-    fill_fields<float>(excluded.mask, excluded.window_px, all, excluded_, edge_);
+    fill_fields<float>(excluded.mask, excluded.window_px, all, red_, black_, edge_);
 }
 
 }  // namespace touchcloud::imaging

@@ -17,6 +17,13 @@ plate and robot are the Palm's. A simulated sensor, not a published one: it
 is small enough to press inside the mug and the torus's 50 mm hole, which the
 65 mm dome cannot enter.
 
+And scene_realistic.yaml: the Palm 2.0 as imperfect as the fox mask's
+realistic scene (sample_clouds/fox_mask/scene_realistic.yaml: its tilted
+plate and gel, rendered images with vignetting, noise, blur and marker
+dropout, the robot's pose noise), for pipelines/closed_object_all_sides_realistic.yaml,
+which reads the dots from the images and triangulates them with the sensor
+that pipelines/rsrt_calibration.yaml estimated for that true sensor.
+
     sample_clouds/closed_objects/make_closed_objects.py [build/bin/touchcloud-make-scene]
 
 Meshes are ASCII PLY in mm, outward-facing triangles, written deterministically.
@@ -158,17 +165,32 @@ FINGERTIP = {"gel: {diameter_mm: 65}": "gel: {diameter_mm: 20}   # a fingertip: 
              "markers: {min_spacing_mm: 1.5, mean_spacing_mm: 1.8,": "markers: {min_spacing_mm: 0.75, mean_spacing_mm: 0.9,"}
 
 
-def write_fingertip_scene(folder):
-    """scene_fingertip.yaml from the folder's scene.yaml: the 20 mm dome."""
+REALISTIC = {
+    "plate: {thickness_mm: 5, tilt_deg: [0, 0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.41}":
+        "plate: {thickness_mm: 5, tilt_deg: [1.5, -2.0], mu_air: 1.0, mu_acrylic: 1.49, mu_silicone: 1.45}",
+    "plate_gap_mm: 45": "plate_gap_mm: 44",
+    "effects: [contact, refraction]": """effects:
+  - contact
+  - elastic_spread: {sigma_mm: 3.0}
+  - refraction
+  - lens_distortion
+  - render: {background_grey: 200, vignetting: 0.35, marker_grey: 40}
+  - pixel_noise: {sigma_grey: 2.0, sigma_px: 0}
+  - blur: {sigma_px: 0.9}
+  - marker_dropout: {probability: 0.02}
+  - pose_noise: {sigma_mm: 0.01, sigma_deg: 0.005}"""}
+
+
+def write_variant(folder, name, changes, header):
+    """name from the folder's scene.yaml with each of changes made."""
     with open(os.path.join(folder, "scene.yaml")) as f:
         text = f.read()
-    for palm, tip in FINGERTIP.items():
+    for palm, other in changes.items():
         if palm not in text:
-            raise SystemExit(f"{folder}/scene.yaml: no '{palm}' to make the fingertip scene from")
-        text = text.replace(palm, tip)
-    text = text.replace("touched by the marker GelStereo Palm 2.0.",
-                        "touched by a 20 mm fingertip GelStereo\n# (scene.yaml with a smaller dome and denser markers).", 1)
-    with open(os.path.join(folder, "scene_fingertip.yaml"), "w") as f:
+            raise SystemExit(f"{folder}/scene.yaml: no '{palm}' to make {name} from")
+        text = text.replace(palm, other)
+    text = text.replace("touched by the marker GelStereo Palm 2.0.", header, 1)
+    with open(os.path.join(folder, name), "w") as f:
         f.write(text)
 
 
@@ -196,7 +218,11 @@ def main():
         # The scene beside the mesh; make-scene copies the mesh into the object's folder.
         subprocess.run([make_scene, mesh, "--name", name, "--out", HERE], check=True)
         os.remove(mesh)
-        write_fingertip_scene(os.path.join(HERE, name))
+        folder = os.path.join(HERE, name)
+        write_variant(folder, "scene_fingertip.yaml", FINGERTIP, "touched by a 20 mm fingertip GelStereo\n"
+                      "# (scene.yaml with a smaller dome and denser markers).")
+        write_variant(folder, "scene_realistic.yaml", REALISTIC, "touched by the marker GelStereo Palm 2.0\n"
+                      "# as imperfect as the fox mask's scene_realistic.yaml (images, noise, a tilted plate).")
 
 
 if __name__ == "__main__":

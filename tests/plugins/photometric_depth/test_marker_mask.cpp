@@ -80,7 +80,7 @@ cv::Mat dots_near_press(const Press& dotted) {
 // itself loses the rim's kink to the fill (see docs/sensors/gelsight.md).
 // The tolerances: the dots' pixels after the fill within 0.002 mm (mean)
 // and 0.01 mm (max) of the dot-free render's error at the same pixels
-// (measured: 0.0006 / 0.0035 mm masked, 0.0098 / 0.056 mm left in,
+// (measured: 0.0006 / 0.0034 mm masked, 0.0098 / 0.056 mm left in,
 // 0.0006 / 0.0035 mm without dots).
 TEST(PhotometricDepthMarkers, MaskedDotsLeaveNoBump) {
   TempDir dir;

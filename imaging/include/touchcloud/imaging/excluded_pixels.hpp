@@ -1,7 +1,7 @@
 // Pixels whose colour is no shading (a marker dot's ink) left out of a
 // field computed per pixel and filled from the pixels around them: first,
 // along each row, the straight line between the kept pixels either side;
-// then Gauss-Seidel sweeps of the 4-neighbour mean (towards the harmonic
+// then over-relaxed sweeps of the 4-neighbour mean (towards the harmonic
 // fill), so a slope across a dot in any direction goes on as a plane would.
 // A dot on a contact's rim so keeps the rim's values on either side, where a
 // colour fitted across it gives a slope neither side has; and nothing is
@@ -17,7 +17,7 @@ namespace touchcloud::imaging {
 
 struct ExcludedPixels {
   cv::Mat mask;       // CV_8UC1, set: left out
-  int window_px = 3;  // odd; a left-out blob is at most this wide (the sweeps: as many)
+  int window_px = 3;  // odd; a left-out blob is at most this wide (sets the sweeps)
 };
 
 class ExcludedFill {
@@ -27,7 +27,7 @@ class ExcludedFill {
   void fill(const ExcludedPixels& excluded, std::initializer_list<cv::Mat*> fields);
 
  private:
-  std::vector<int> excluded_, edge_;  // scratch, reused: inside the image, on its border
+  std::vector<int> red_, black_, edge_;  // scratch, reused: inside the image by colour, on its border
 };
 
 }  // namespace touchcloud::imaging

@@ -149,7 +149,7 @@ def plot(args, curves):
     for (shape, method), by_touch in curves.items():
         touches = sorted(by_touch)
         # a colour per shape, a line style per method
-        style = (":", "--", "-.", "-", (0, (1, 3)))[[name for name, _, _, _ in METHODS.values()].index(method)]
+        style = (":", "--", "-.", "-", "x-")[[name for name, _, _, _ in METHODS.values()].index(method)]
         for ax, name in zip(axes, ("chamfer_est_to_gt", "fscore")):
             ax.plot(touches, [statistics.fmean(by_touch[t][name]) for t in touches], style,
                     color=f"C{SHAPES.index(shape)}", label=f"{shape}, {method.split(' (')[0]}")

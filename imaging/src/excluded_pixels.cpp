@@ -1,6 +1,8 @@
 #include "touchcloud/imaging/excluded_pixels.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace touchcloud::imaging {
@@ -10,7 +12,8 @@ namespace {
 // The fields filled together: they share the excluded pixels and the sweeps.
 template <typename T>
 void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>& fields, std::vector<int>& red,
-                 std::vector<int>& black, std::vector<int>& edge) {
+                 std::vector<int>& black, std::vector<int>& edge, std::vector<std::uint8_t>& reached,
+                 std::vector<int>& queue) {
   const int w = mask.cols, h = mask.rows;
   std::vector<T*> f;
   for (cv::Mat* m : fields) f.push_back(m->ptr<T>());
@@ -41,6 +44,34 @@ void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>
       u = end;
     }
   }
+  // A blob whose kept neighbours are all zero in every field (a dot on flat
+  // gel, away from any contact: most of them) starts at zero and stays zero
+  // through every sweep; only the blobs reached from a kept pixel with a
+  // value are swept, which gives the same values.
+  const std::uint8_t* m = mask.ptr<std::uint8_t>();
+  reached.assign(static_cast<std::size_t>(w) * h, 0);
+  queue.clear();
+  const auto each_neighbour = [&](int p, auto&& visit) {
+    const int u = p % w, v = p / w;
+    if (u > 0) visit(p - 1);
+    if (u + 1 < w) visit(p + 1);
+    if (v > 0) visit(p - w);
+    if (v + 1 < h) visit(p + w);
+  };
+  for (const std::vector<int>* pixels : {&red, &black, &edge})
+    for (const int p : *pixels) {
+      bool valued = false;
+      each_neighbour(p, [&](int q) {
+        for (const T* g : f) valued = valued || (!m[q] && g[q] != 0);
+      });
+      if (valued) reached[p] = 1, queue.push_back(p);
+    }
+  for (std::size_t next = 0; next < queue.size(); ++next)
+    each_neighbour(queue[next], [&](int q) {
+      if (m[q] && !reached[q]) reached[q] = 1, queue.push_back(q);
+    });
+  for (std::vector<int>* pixels : {&red, &black, &edge})
+    pixels->erase(std::remove_if(pixels->begin(), pixels->end(), [&](int p) { return !reached[p]; }), pixels->end());
   // Then sweeps towards the harmonic fill (the 4-neighbour mean), which
   // carries a slope across a dot in any direction as a plane would:
   // successive over-relaxation with the factor that is best for a blob as
@@ -84,9 +115,9 @@ void ExcludedFill::fill(const ExcludedPixels& excluded, std::initializer_list<cv
               f->size() == excluded.mask.size());
   const std::vector<cv::Mat*> all(fields);
   if (type == CV_64FC1)
-    fill_fields<double>(excluded.mask, excluded.window_px, all, red_, black_, edge_);
+    fill_fields<double>(excluded.mask, excluded.window_px, all, red_, black_, edge_, reached_, queue_);
   else
-    fill_fields<float>(excluded.mask, excluded.window_px, all, red_, black_, edge_);
+    fill_fields<float>(excluded.mask, excluded.window_px, all, red_, black_, edge_, reached_, queue_);
 }
 
 }  // namespace touchcloud::imaging

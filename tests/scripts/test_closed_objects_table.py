@@ -1,7 +1,7 @@
 """benchmarks/closed_objects/make_closed_objects_table.py on one shape, one
 seed and two touches from above and from any side: every file it promises,
-one summary row per method (the all-sides rows with the Palm's dome and the
-fingertip's), a curve row per touch, the F-score off the table, and bad
+one summary row per method (the all-sides rows with the Palm's dome, the
+fingertip's and the realistic sensor's), a curve row per touch, the F-score off the table, and bad
 arguments refused before anything runs."""
 import csv
 import math
@@ -30,7 +30,7 @@ def test_one_shape_one_seed_two_touches(tmp_path):
     assert r.returncode == 0, r.stderr
     summary = rows(tmp_path / "results.csv")
     methods = ["height field", "implicit surface", "implicit surface, all sides",
-               "implicit surface, all sides, 20 mm fingertip"]
+               "implicit surface, all sides, 20 mm fingertip", "implicit surface, all sides, realistic sensor"]
     assert [(s["shape"], s["method"].split(" (")[0]) for s in summary] == [("pebble", m) for m in methods]
     for s in summary:
         assert s["seeds"] == "1" and float(s["touches"]) == 2
@@ -41,8 +41,8 @@ def test_one_shape_one_seed_two_touches(tmp_path):
         assert 0 < float(s["fscore_off_table"]) <= 1
         assert float(s["on_table_share"]) == 0  # the pebble has no face on the table
     # Refusals are side_touch's: counted for the touches from any side alone.
-    assert [s["refused_touches"] != "" for s in summary] == [False, False, True, True]
-    assert len(rows(tmp_path / "runs.csv")) == 4
+    assert [s["refused_touches"] != "" for s in summary] == [False, False, True, True, True]
+    assert len(rows(tmp_path / "runs.csv")) == 5
     curves = rows(tmp_path / "curves.csv")
     assert [(c["method"].split(" (")[0], c["touch"]) for c in curves] == [(m, t) for m in methods for t in "12"]
     assert "± 0.000" in (tmp_path / "results.md").read_text()

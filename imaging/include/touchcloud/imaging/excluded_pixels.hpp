@@ -5,9 +5,11 @@
 // fill), so a slope across a dot in any direction goes on as a plane would.
 // A dot on a contact's rim so keeps the rim's values on either side, where a
 // colour fitted across it gives a slope neither side has; and nothing is
-// fitted per dot, so it is cheap (work in proportion to the pixels left out).
+// fitted per dot, so it is cheap (work in proportion to the pixels left out
+// where the field has a value around them: a dot on flat gel costs a look).
 #pragma once
 
+#include <cstdint>
 #include <initializer_list>
 #include <vector>
 
@@ -27,7 +29,10 @@ class ExcludedFill {
   void fill(const ExcludedPixels& excluded, std::initializer_list<cv::Mat*> fields);
 
  private:
-  std::vector<int> red_, black_, edge_;  // scratch, reused: inside the image by colour, on its border
+  // Scratch, reused: the excluded pixels inside the image by colour and on
+  // its border; those reached from a kept pixel with a value.
+  std::vector<int> red_, black_, edge_, queue_;
+  std::vector<std::uint8_t> reached_;
 };
 
 }  // namespace touchcloud::imaging

@@ -49,6 +49,7 @@ import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from mpi_launch import run_all  # noqa: E402
+from region_recall import area, on_table as is_on_table, placed_mesh, region_meshes, region_recalls, write_ply  # noqa: E402
 
 SHAPES = ["sphere", "pebble", "step", "torus", "mug"]
 # key: (method as the table names it, pipeline, scene file in the shape's folder, touched from any side)
@@ -98,32 +99,10 @@ def write_off_table_mesh(shape, path):
     """The shape's mesh placed as its scene places it (a translation), less
     the triangles lying on the table (every corner at z = 0): what a touch
     could reach at best. Returns the share of the area left out."""
-    folder = f"sample_clouds/closed_objects/{shape}"
-    with open(f"{folder}/scene.yaml") as f:
-        xyz = re.search(r"pose: \{xyz_mm: \[([^\]]*)\], rpy_deg: \[0, 0, 0\]\}", f.read())
-    if not xyz:
-        raise SystemExit(f"{folder}/scene.yaml: the object's pose is not a translation; cannot place its mesh here")
-    offset = [float(v) for v in xyz.group(1).split(",")]
-    with open(f"{folder}/{shape}.ply") as f:
-        lines = f.read().split("\n")
-    count = {l.split()[1]: int(l.split()[2]) for l in lines if l.startswith("element ")}
-    start = lines.index("end_header") + 1
-    verts = [[float(v) + o for v, o in zip(l.split(), offset)] for l in lines[start:start + count["vertex"]]]
-    faces = [l.split()[1:4] for l in lines[start + count["vertex"]:start + count["vertex"] + count["face"]]]
-    area = lambda f: 0.5 * math.dist((0, 0, 0), cross(*[[verts[int(f[k])][i] - verts[int(f[0])][i] for i in range(3)]
-                                                          for k in (1, 2)]))
-    on_table = [f for f in faces if all(abs(verts[int(i)][2]) < 1e-6 for i in f)]
-    kept = [f for f in faces if f not in on_table] if on_table else faces
-    with open(path, "w") as f:
-        f.write(f"ply\nformat ascii 1.0\nelement vertex {len(verts)}\nproperty float x\nproperty float y\n"
-                f"property float z\nelement face {len(kept)}\nproperty list uchar int vertex_indices\nend_header\n")
-        f.writelines("%.4f %.4f %.4f\n" % tuple(v) for v in verts)
-        f.writelines(f"3 {' '.join(t)}\n" for t in kept)
-    return sum(map(area, on_table)) / sum(map(area, faces))
-
-
-def cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    verts, faces, _ = placed_mesh(shape)
+    on_table = [f for f in faces if is_on_table(verts, f)]
+    write_ply(path, verts, [f for f in faces if f not in on_table] if on_table else faces)
+    return sum(area(verts, f) for f in on_table) / sum(area(verts, f) for f in faces)
 
 
 def off_table_fscore(args, shape, out, gt):
@@ -220,7 +199,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
 
     runs = [(shape, key, seed) for shape in shapes for key in methods for seed in seeds]
-    rows, per_touch, series_of, failures = [], {}, {}, []
+    rows, per_touch, series_of, failures, region_rows = [], {}, {}, [], []
     with tempfile.TemporaryDirectory(dir=os.path.abspath(args.out)) as scratch:
         folder = os.path.abspath(args.runs) if args.runs else scratch
         outs = [os.path.join(folder, run_name(args, shape, key, seed)) for shape, key, seed in runs]
@@ -232,10 +211,11 @@ def main():
             os.makedirs(out, exist_ok=True)
             with open(os.path.join(out, "failure.txt"), "w") as f:  # a seeded run fails again: kept as made
                 f.write(stderr)
-        off_table, on_table_share = {}, {}
+        off_table, on_table_share, regions = {}, {}, {}
         for shape in shapes:
             off_table[shape] = os.path.join(scratch, f"{shape}_off_table.ply")
             on_table_share[shape] = write_off_table_mesh(shape, off_table[shape])
+            regions[shape] = region_meshes(shape, scratch)
         for (shape, key, seed), out in zip(runs, outs):
             method = METHODS[key][0]
             if not os.path.exists(os.path.join(out, "summary.json")):  # failed: recorded, left out of the means
@@ -253,6 +233,10 @@ def main():
                 continue
             final, series = read_run(out)
             final["fscore_off_table"] = off_table_fscore(args, shape, out, off_table[shape])
+            surface = os.path.join(out, f"{shape}_surface.pcd")
+            for region, share, recall in region_recalls(args.touchcloud, shape, surface, args.fscore_mm, regions[shape]):
+                region_rows.append({"shape": shape, "method": method, "seed": seed, "region": region,
+                                    "area_share": share, "recall": recall})
             rows.append({"shape": shape, "method": method, "seed": seed, **final})
             by_touch = per_touch.setdefault((shape, method), {})
             for name, values in series.items():
@@ -266,6 +250,10 @@ def main():
         w = csv.DictWriter(f, fieldnames=["shape", "method", "seed", "touches"] + names + extra + ["wall_time_s", "failure"])
         w.writeheader()
         w.writerows(rows)
+    with open(os.path.join(args.out, "regions.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["shape", "method", "seed", "region", "area_share", "recall"])
+        w.writeheader()
+        w.writerows(region_rows)
     with open(os.path.join(args.out, "curves.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["shape", "method", "seed", "touch"] + names)
@@ -318,6 +306,16 @@ def main():
                     " | ".join(fmt(r, n, d) for n, _, d in METRICS) +
                     f" | {fmt(r, 'fscore_off_table', 3)} | {fmt(r, 'refused_touches', 1)} | "
                     f"{fmt(r, 'wall_time_s', 1)} |\n")
+        f.write(f"\nCoverage at {args.fscore_mm:g} mm by region of each shape (regions.csv; region_recall.py names "
+                f"them; mean over the seeds that ran), the share of the shape's area in brackets:\n\n"
+                "| shape | method | coverage by region |\n|---|---|---|\n")
+        for shape in shapes:
+            for key in methods:
+                method = METHODS[key][0]
+                mine = [r for r in region_rows if r["shape"] == shape and r["method"] == method]
+                cells = [f"{region} ({share:.3f}) {statistics.fmean(r['recall'] for r in mine if r['region'] == region):.3f}"
+                         for region, _, share in regions[shape] if any(r["region"] == region for r in mine)]
+                f.write(f"| {shape} | {method} | {'; '.join(cells) or '-'} |\n")
         if failures:
             f.write("\nFailed runs (left out of the means above; '-' where every seed failed):\n\n")
             f.writelines(f"- {x['shape']}, {x['method']}, seed {x['seed']}: {x['failure']}\n" for x in failures)

@@ -10,7 +10,9 @@
 // form: exact fits every training point (a bordered Cholesky update per
 // touch) and refuses a touch beyond exact_max_points; sparse summarises them
 // by inducing points (touchcloud/gp/sparse_implicit_surface.hpp) for tens of
-// thousands of points.
+// thousands of points; exact_then_sparse is exact until a touch would pass
+// exact_max_points, then the sparse form fitted to every touch so far (as if
+// it had been sparse from the first), said in a note (fit.form).
 //
 // The palm's normal comes from the tactile cloud's sensor pose (against its
 // z axis: the gel presses along +z of the sensor frame); without the tactile input each touch's normal
@@ -24,6 +26,7 @@
 #include <optional>
 #include <sstream>
 #include <variant>
+#include <vector>
 
 #include "top_surface.hpp"
 
@@ -39,7 +42,7 @@
 
 namespace touchcloud {
 
-enum class ImplicitForm { exact, sparse };
+enum class ImplicitForm { exact, sparse, exact_then_sparse };
 
 // The model as the planner reads it; the stage copies the model before the
 // next touch while this is held.
@@ -67,17 +70,22 @@ class GpisSurface final : public Stage {
   double scale_floor_ = 1;  // the thin-plate R's floor last reported
   // Shared with the `surface` output until the next touch.
   std::variant<std::shared_ptr<gp::ImplicitSurface>, std::shared_ptr<gp::SparseImplicitSurface>> model_;
+  std::vector<gp::ImplicitTouch> touches_;  // exact_then_sparse, while exact: for the sparse form's fit
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
   SurfaceModelPtr surface_;
   ImplicitModelPtr implicit_;
 
   void declare_parameters(ParameterSet& p) override {
-    p.add("form", form_, ImplicitForm::exact, {{"exact", ImplicitForm::exact}, {"sparse", ImplicitForm::sparse}})
+    p.add("form", form_, ImplicitForm::exact,
+          {{"exact", ImplicitForm::exact}, {"sparse", ImplicitForm::sparse},
+           {"exact_then_sparse", ImplicitForm::exact_then_sparse}})
         .doc("exact: every training point in the GP (refused beyond exact_max_points); sparse: inducing points "
-             "summarise them, for tens of thousands of points");
+             "summarise them, for tens of thousands of points; exact_then_sparse: exact until a touch would pass "
+             "exact_max_points, then sparse, fitted again to every touch (note fit.form)");
     p.add("exact_max_points", exact_max_points_, std::int64_t{10000}).at_least(1).unit("points")
-        .doc("the exact form refuses a touch that would take it beyond this many training points (use form: sparse); "
+        .doc("the exact form refuses a touch that would take it beyond this many training points (exact_then_sparse "
+             "goes on in the sparse form there); "
              "its per-touch update passes 50 ms at about 2,700 points on one core and grows as the points squared "
              "(docs/benchmarks.md)");
     p.add("inducing_spacing_mm", sparse_.inducing_spacing_mm, 8.0).unit("mm").above(0.0)
@@ -119,7 +127,8 @@ class GpisSurface final : public Stage {
   }
   void on_configure(RunContext&) override {
     options_.max_training_points = exact_max_points_;
-    if (form_ == ImplicitForm::exact)
+    touches_.clear();
+    if (form_ != ImplicitForm::sparse)
       model_ = std::make_shared<gp::ImplicitSurface>(options_);
     else
       model_ = std::make_shared<gp::SparseImplicitSurface>(options_, sparse_);
@@ -185,6 +194,30 @@ class GpisSurface final : public Stage {
     if (io.wants("implicit")) implicit_ = std::make_shared<HeldImplicitModel<Model>>(model);
   }
 
+  // exact_then_sparse: while exact, keeps the touch; when it would take the
+  // exact form beyond exact_max_points, fits the sparse form to every touch
+  // before it, in their order, and goes on with that.
+  void switch_to_sparse_beyond_exact(const gp::ImplicitTouch& touch, RunContext& ctx) {
+    const auto* exact = std::get_if<std::shared_ptr<gp::ImplicitSurface>>(&model_);
+    if (!exact) return;
+    const Eigen::Index before = (*exact)->training_size();
+    if (before + gp::implicit_rows_of(touch.points_mm.rows(), options_) <= exact_max_points_) {
+      touches_.push_back(touch);
+      return;
+    }
+    auto sparse = std::make_shared<gp::SparseImplicitSurface>(options_, sparse_);
+    for (const gp::ImplicitTouch& t : touches_) sparse->add(t);
+    touches_.clear();
+    std::ostringstream text;
+    text << "exact form for touches 1-" << sparse->touches() << " (" << before << " training points); touch "
+         << sparse->touches() + 1 << " would pass exact_max_points (" << exact_max_points_
+         << "), so from it on the sparse form (inducing sites " << sparse_.inducing_spacing_mm
+         << " mm apart), fitted again to every touch";
+    ctx.note("form", text.str());
+    ctx.log(text.str());
+    model_ = std::move(sparse);
+  }
+
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud) throw RunError("no cloud to add");
@@ -204,6 +237,7 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = -(*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
+    if (form_ == ImplicitForm::exact_then_sparse) switch_to_sparse_beyond_exact(touch, ctx);
     std::visit([&](auto& model) { update_and_mesh(model, touch, io, ctx); }, model_);
     auto out = std::make_shared<PointCloud>();
     for (const Eigen::Vector3d& p : scoring::sample_surface(mesh_, static_cast<std::size_t>(samples_), ctx.rng()()))

@@ -46,6 +46,32 @@ def test_one_shape_one_seed_two_touches(tmp_path):
     curves = rows(tmp_path / "curves.csv")
     assert [(c["method"].split(" (")[0], c["touch"]) for c in curves] == [(m, t) for m in methods for t in "12"]
     assert "± 0.000" in (tmp_path / "results.md").read_text()
+    # Coverage by region: the pebble's faces looking up, sideways and down, for every run.
+    regions = rows(tmp_path / "regions.csv")
+    assert [(r["method"].split(" (")[0], r["region"]) for r in regions] == \
+        [(m, g) for m in methods for g in ("facing down", "facing sideways", "facing up")]
+    assert math.isclose(sum(float(r["area_share"]) for r in regions[:3]), 1.0)
+    assert all(0 <= float(r["recall"]) <= 1 for r in regions)
+    assert "| pebble | height field (GP, max variance) | facing down (" in (tmp_path / "results.md").read_text()
+
+
+def test_the_mugs_regions_cover_it_once_and_a_surface_there_recalls_only_its_region(tmp_path):
+    sys.path.insert(0, str(SCRIPT.parent))
+    from region_recall import region_meshes, region_recalls
+    meshes = region_meshes("mug", str(tmp_path))
+    shares = {region: share for region, _, share in meshes}
+    assert sorted(shares) == ["bottom, on the table", "handle", "inner floor", "inner wall", "outer wall", "rim"]
+    assert math.isclose(sum(shares.values()), 1.0) and round(shares["bottom, on the table"], 3) == 0.093
+    # A cloud on the inside floor alone (the mug's axis at x = -13.5, the floor
+    # at z = 6, radius 36): that region recalled, the rim and the bottom not.
+    floor = tmp_path / "floor.pcd"
+    points = [(-13.5 + r * math.cos(a), r * math.sin(a), 6.0) for r in range(0, 36) for a in
+              [k * 2 * math.pi / max(1, round(2 * math.pi * r)) for k in range(max(1, round(2 * math.pi * r)))]]
+    floor.write_text("VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                     f"WIDTH {len(points)}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(points)}\nDATA ascii\n" +
+                     "".join(f"{x:.3f} {y:.3f} {z:.3f}\n" for x, y, z in points))
+    recall = {region: r for region, _, r in region_recalls(str(CLI), "mug", str(floor), 2.0, meshes)}
+    assert recall["inner floor"] > 0.95 and recall["rim"] == 0 and recall["bottom, on the table"] == 0, recall
 
 
 def test_bad_arguments_are_refused_before_any_run(tmp_path):

@@ -136,6 +136,38 @@ TEST_F(GpisSurfaceStage, ExactRefusesBeyondItsPointCount) {
   }
 }
 
+// form: exact_then_sparse goes on where the exact form refuses: the touch
+// that would pass exact_max_points switches to the sparse form, fitted again
+// to every touch, says so in a note, and gives the cloud a sparse form fed
+// the same touches from the first gives.
+TEST_F(GpisSurfaceStage, ExactThenSparseGoesOnInTheSparseFormBeyondTheExactPointCount) {
+  const std::map<std::string, ParamValue> common{{"exact_max_points", std::int64_t{50}}, {"inducing_spacing_mm", 5.0},
+                                                 {"cells", std::int64_t{24}}, {"samples", std::int64_t{500}}};
+  auto switching_params = common;
+  switching_params["form"] = std::string("exact_then_sparse");
+  auto sparse_params = common;
+  sparse_params["form"] = std::string("sparse");
+  test::StageHarness switching("gpis_surface", switching_params, "fit");
+  test::StageHarness sparse("gpis_surface", sparse_params, "fit");
+  switching.configure();
+  sparse.configure();
+  const auto touches = test::SphereObject().touches(4);  // 21 training points each: the third passes 50
+  CloudConstPtr a, b;
+  for (std::size_t i = 0; i < touches.size(); ++i) {
+    a = switching.process_one<CloudConstPtr>({{"cloud", cloud_of(touches[i])}, {"tactile", tactile_for(touches[i])}},
+                                             "cloud");
+    b = sparse.process_one<CloudConstPtr>({{"cloud", cloud_of(touches[i])}, {"tactile", tactile_for(touches[i])}},
+                                          "cloud");
+    EXPECT_EQ(switching.record().notes.count("fit.form"), i >= 2 ? 1u : 0u) << "touch " << i + 1;
+  }
+  EXPECT_EQ(switching.metric("training_points"), 84);
+  const std::string note = switching.record().notes.at("fit.form");
+  EXPECT_NE(note.find("exact form for touches 1-2 (42 training points); touch 3"), std::string::npos) << note;
+  ASSERT_EQ(a->size(), b->size());
+  for (std::size_t i = 0; i < a->size(); ++i)
+    ASSERT_EQ(a->points[i].getVector3fMap(), b->points[i].getVector3fMap()) << "point " << i;
+}
+
 // The `surface` output is the sphere as a press from above meets it: its top
 // over the sphere, the table (z = 0) beside it; the variance is lower where
 // the sphere was touched than over the table far from any touch, never

@@ -289,7 +289,7 @@ def main():
                 f"--seeds {args.seeds} --touches {args.touches} --all-sides-touches {args.all_sides_touches} "
                 f"--shapes {','.join(shapes)} --methods {','.join(methods)}` (at most {args.touches} touches from "
                 f"above, {args.all_sides_touches} from any side, fewer where nothing reachable is left; the "
-                f"simulator's ideal sensor) on {platform.machine()} Linux with {os.cpu_count()} cores. Mean ± sd "
+                f"simulator's ideal sensor, but for the realistic sensor's rows) on {platform.machine()} Linux with {os.cpu_count()} cores. Mean ± sd "
                 f"over {len(seeds)} seed(s). Distances in mm against the whole closed mesh; F-score and coverage at "
                 f"{args.fscore_mm:g} mm; visible coverage is the share of what a press from above can see. "
                 f"F-score off the table: the final surface against the object without the faces resting on the "

@@ -11,12 +11,11 @@ namespace {
 
 // The fields filled together: they share the excluded pixels and the sweeps.
 template <typename T>
-void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>& fields, std::vector<int>& red,
-                 std::vector<int>& black, std::vector<int>& edge, std::vector<std::uint8_t>& reached,
-                 std::vector<int>& queue) {
+void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>& fields, FillScratch& scratch) {
   const int w = mask.cols, h = mask.rows;
   std::vector<T*> f;
   for (cv::Mat* m : fields) f.push_back(m->ptr<T>());
+  auto& [red, black, edge, queue, reached] = scratch;
   red.clear();
   black.clear();
   edge.clear();
@@ -51,7 +50,7 @@ void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>
   const std::uint8_t* m = mask.ptr<std::uint8_t>();
   reached.assign(static_cast<std::size_t>(w) * h, 0);
   queue.clear();
-  const auto each_neighbour = [&](int p, auto&& visit) {
+  const auto each_neighbour = [&](int p, auto&& visit) {  // the 4-neighbours inside the image
     const int u = p % w, v = p / w;
     if (u > 0) visit(p - 1);
     if (u + 1 < w) visit(p + 1);
@@ -77,9 +76,9 @@ void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>
   // successive over-relaxation with the factor that is best for a blob as
   // wide as the window: half as many sweeps as the window is wide leave under
   // a tenth of the start's error, where Gauss-Seidel with as many sweeps as
-  // the window is wide leaves a quarter to two thirds of it. In red-black order a pixel's
-  // neighbours all have the other colour, so the updates of one colour do
-  // not wait on each other.
+  // the window is wide leaves a quarter to two thirds of it. In red-black
+  // order a pixel's neighbours all have the other colour, so the updates of
+  // one colour do not wait on each other.
   const double omega = 2 / (1 + std::sin(M_PI / (window_px + 1)));
   const int sweeps = (window_px + 1) / 2;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
@@ -89,18 +88,13 @@ void fill_fields(const cv::Mat& mask, int window_px, const std::vector<cv::Mat*>
           const double mean = 0.25 * (double(g[p - 1]) + g[p + 1] + g[p - w] + g[p + w]);
           g[p] = static_cast<T>(g[p] + omega * (mean - g[p]));
         }
-    for (const int p : edge) {  // on the image's border: the neighbours it has
-      const int u = p % w, v = p / w;
+    for (const int p : edge)  // on the image's border: the mean of the neighbours it has
       for (T* g : f) {
         double sum = 0;
         int n = 0;
-        if (u > 0) sum += g[p - 1], ++n;
-        if (u + 1 < w) sum += g[p + 1], ++n;
-        if (v > 0) sum += g[p - w], ++n;
-        if (v + 1 < h) sum += g[p + w], ++n;
+        each_neighbour(p, [&](int q) { sum += g[q], ++n; });
         g[p] = static_cast<T>(sum / n);
       }
-    }
   }
 }
 
@@ -115,9 +109,9 @@ void ExcludedFill::fill(const ExcludedPixels& excluded, std::initializer_list<cv
               f->size() == excluded.mask.size());
   const std::vector<cv::Mat*> all(fields);
   if (type == CV_64FC1)
-    fill_fields<double>(excluded.mask, excluded.window_px, all, red_, black_, edge_, reached_, queue_);
+    fill_fields<double>(excluded.mask, excluded.window_px, all, scratch_);
   else
-    fill_fields<float>(excluded.mask, excluded.window_px, all, red_, black_, edge_, reached_, queue_);
+    fill_fields<float>(excluded.mask, excluded.window_px, all, scratch_);
 }
 
 }  // namespace touchcloud::imaging

@@ -22,6 +22,13 @@ struct ExcludedPixels {
   int window_px = 3;  // odd; a left-out blob is at most this wide (sets the sweeps)
 };
 
+// Reused between fills: the excluded pixels inside the image by colour
+// (red-black) and on its border; those reached from a kept pixel with a value.
+struct FillScratch {
+  std::vector<int> red, black, edge, queue;
+  std::vector<std::uint8_t> reached;
+};
+
 class ExcludedFill {
  public:
   // Each field (all CV_32FC1 or all CV_64FC1, continuous, the mask's size)
@@ -29,10 +36,7 @@ class ExcludedFill {
   void fill(const ExcludedPixels& excluded, std::initializer_list<cv::Mat*> fields);
 
  private:
-  // Scratch, reused: the excluded pixels inside the image by colour and on
-  // its border; those reached from a kept pixel with a value.
-  std::vector<int> red_, black_, edge_, queue_;
-  std::vector<std::uint8_t> reached_;
+  FillScratch scratch_;
 };
 
 }  // namespace touchcloud::imaging

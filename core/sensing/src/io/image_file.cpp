@@ -9,13 +9,14 @@
 #include <string_view>
 
 #include <jpeglib.h>
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/path_text.hpp"
+#include "png_rows.hpp"
 
 namespace fs = std::filesystem;
 
@@ -99,8 +100,7 @@ std::string png_problem(std::string_view b) {
     const std::string type(b.substr(at + 4, 4));
     if (length > b.size() - at - 12)
       return "chunk '" + type + "' at byte " + std::to_string(at) + " runs past the end of the file (truncated)";
-    const auto* typed = reinterpret_cast<const Bytef*>(b.data() + at + 4);
-    if (crc32(0, typed, static_cast<uInt>(length + 4)) != big_endian_u32(b, at + 8 + length))
+    if (libdeflate_crc32(0, b.data() + at + 4, length + 4) != big_endian_u32(b, at + 8 + length))
       return "chunk '" + type + "' at byte " + std::to_string(at) + " fails its checksum (corrupt)";
     if (type == "IEND") return "";
     at += 12 + length;
@@ -162,6 +162,7 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
     if (!jpeg_decodes_cleanly(bytes, why)) damaged("JPEG", std::string("libjpeg says \"") + why + "\"");
   } else if (b.substr(0, 8) == "\x89PNG\r\n\x1A\n") {
     if (const std::string why = png_problem(b); !why.empty()) damaged("PNG", why);
+    if (auto image = io::decode_plain_png(b, flags)) return std::move(*image);
   } else if (b.substr(0, 2) == "BM") {
     if (const std::string why = bmp_problem(b); !why.empty()) damaged("BMP", why);
   } else if ((b.substr(0, 4) == std::string_view("II*\0", 4) || b.substr(0, 4) == std::string_view("MM\0*", 4)) &&

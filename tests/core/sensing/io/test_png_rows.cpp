@@ -1,0 +1,194 @@
+// The PNG rows decoded without libpng against OpenCV's decoder: every
+// filter type (the PNGs built here, each row filtered as PNG defines it),
+// grey and RGB, one IDAT or many, the files OpenCV's writer makes at each
+// compression; and every layout it does not handle (16-bit, palette,
+// interlaced, transparency, gamma, a filter type PNG does not define, data
+// that inflates short or long) left to OpenCV, with read_image_file's
+// answer unchanged.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <libdeflate.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/png_rows.hpp"
+#include "test_support.hpp"
+#include "touchcloud/io/image_file.hpp"
+
+using namespace touchcloud;
+
+namespace {
+
+void put_u32(std::string& out, std::uint32_t v) {
+  for (int shift : {24, 16, 8, 0}) out.push_back(static_cast<char>(v >> shift & 0xFF));
+}
+
+void put_chunk(std::string& png, const std::string& type, const std::string& body) {
+  put_u32(png, static_cast<std::uint32_t>(body.size()));
+  const std::string typed = type + body;
+  png += typed;
+  put_u32(png, libdeflate_crc32(0, typed.data(), typed.size()));
+}
+
+int paeth(int a, int b, int c) {
+  const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+  return pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+}
+
+struct Layout {
+  int depth = 8, colour_type = 2, interlace = 0;
+  std::vector<std::string> extra_chunks;  // "TYPE" with a small body, before the data
+  std::size_t idat_bytes = 1 << 30;       // split the data into IDATs of this size
+  int bad_filter_row = -1;                // a row with filter type 5
+  long trim = 0;                          // bytes cut from (> 0) or added to (< 0) the rows before deflating
+};
+
+// `image` (8-bit grey or BGR) as a PNG whose row r uses filter type
+// filters[r % size], written byte by byte as the format defines.
+std::string build_png(const cv::Mat& image, const std::vector<int>& filters, const Layout& layout = {}) {
+  const int bpp = image.channels(), w = image.cols, h = image.rows;
+  const std::size_t row_bytes = static_cast<std::size_t>(w) * bpp;
+  cv::Mat rgb;
+  if (bpp == 3) cv::cvtColor(image, rgb, cv::COLOR_BGR2RGB);
+  else rgb = image;
+  std::string rows;
+  std::vector<int> zeros(row_bytes, 0);
+  for (int r = 0; r < h; ++r) {
+    const int filter = r == layout.bad_filter_row ? 5 : filters[static_cast<std::size_t>(r) % filters.size()];
+    rows.push_back(static_cast<char>(filter));
+    const std::uint8_t* cur = rgb.ptr<std::uint8_t>(r);
+    const std::uint8_t* up = r > 0 ? rgb.ptr<std::uint8_t>(r - 1) : nullptr;
+    for (std::size_t x = 0; x < row_bytes; ++x) {
+      const int a = x >= static_cast<std::size_t>(bpp) ? cur[x - bpp] : 0, b = up ? up[x] : 0,
+                c = up && x >= static_cast<std::size_t>(bpp) ? up[x - bpp] : 0;
+      const int predicted = filter == 1 ? a : filter == 2 ? b : filter == 3 ? (a + b) / 2 : filter == 4 ? paeth(a, b, c) : 0;
+      rows.push_back(static_cast<char>((cur[x] - predicted) & 0xFF));
+    }
+  }
+  if (layout.trim > 0) rows.resize(rows.size() - static_cast<std::size_t>(layout.trim));
+  if (layout.trim < 0) rows.append(static_cast<std::size_t>(-layout.trim), '\0');
+  libdeflate_compressor* compressor = libdeflate_alloc_compressor(6);
+  std::string deflated(libdeflate_zlib_compress_bound(compressor, rows.size()), '\0');
+  deflated.resize(libdeflate_zlib_compress(compressor, rows.data(), rows.size(), deflated.data(), deflated.size()));
+  libdeflate_free_compressor(compressor);
+
+  std::string png("\x89PNG\r\n\x1A\n", 8), header;
+  put_u32(header, static_cast<std::uint32_t>(w));
+  put_u32(header, static_cast<std::uint32_t>(h));
+  header += {static_cast<char>(layout.depth), static_cast<char>(bpp == 1 ? 0 : layout.colour_type), 0, 0,
+             static_cast<char>(layout.interlace)};
+  put_chunk(png, "IHDR", header);
+  for (const auto& type : layout.extra_chunks) put_chunk(png, type, type == "gAMA" ? std::string("\0\0\xB1\x8F", 4) : "xy");
+  for (std::size_t at = 0; at < deflated.size(); at += layout.idat_bytes)
+    put_chunk(png, "IDAT", deflated.substr(at, layout.idat_bytes));
+  put_chunk(png, "IEND", "");
+  return png;
+}
+
+cv::Mat opencv_decode(const std::string& png, int flags) {
+  return cv::imdecode(cv::Mat(1, static_cast<int>(png.size()), CV_8U, const_cast<char*>(png.data())), flags);
+}
+
+bool same(const cv::Mat& a, const cv::Mat& b) {
+  return a.type() == b.type() && a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
+// Noise (every predictor misses) and a smooth ramp (they hit), odd width.
+std::vector<cv::Mat> images(int type) {
+  cv::Mat noise(23, 37, type), ramp(23, 37, type);
+  cv::RNG rng(47);
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
+  for (int r = 0; r < ramp.rows; ++r)
+    for (int c = 0; c < ramp.cols * ramp.channels(); ++c) ramp.ptr<std::uint8_t>(r)[c] = static_cast<std::uint8_t>(3 * r + 5 * c);
+  return {noise, ramp};
+}
+
+}  // namespace
+
+TEST(PngRows, EveryFilterTypeDecodesAsOpenCvDoesInGreyAndColour) {
+  const std::vector<std::vector<int>> filter_sets = {{0}, {1}, {2}, {3}, {4}, {4, 3, 2, 1, 0}};
+  for (int type : {CV_8UC1, CV_8UC3})
+    for (const cv::Mat& image : images(type))
+      for (const auto& filters : filter_sets)
+        for (std::size_t idat_bytes : {std::size_t{1} << 30, std::size_t{97}}) {
+          Layout layout;
+          layout.idat_bytes = idat_bytes;
+          const std::string png = build_png(image, filters, layout);
+          const std::string what = "channels " + std::to_string(image.channels()) + ", filter " +
+                                   std::to_string(filters.front()) + ", IDAT " + std::to_string(idat_bytes);
+          ASSERT_TRUE(same(opencv_decode(png, cv::IMREAD_UNCHANGED), image)) << what;  // the file is right
+          for (int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR, cv::IMREAD_GRAYSCALE}) {
+            const auto decoded = io::decode_plain_png(png, flags);
+            if (flags == cv::IMREAD_GRAYSCALE && type == CV_8UC3) {
+              EXPECT_FALSE(decoded) << "libpng's own grey conversion is OpenCV's to make";
+              continue;
+            }
+            ASSERT_TRUE(decoded) << what << ", flags " << flags;
+            EXPECT_TRUE(same(*decoded, opencv_decode(png, flags))) << what << ", flags " << flags;
+          }
+        }
+}
+
+TEST(PngRows, OpenCvsOwnFilesReadThroughImageFilesPixelForPixel) {
+  test::TempDir dir;
+  for (int type : {CV_8UC1, CV_8UC3})
+    for (const cv::Mat& image : images(type))
+      for (int level : {0, 1, 6, 9}) {
+        const auto file = dir.path() / ("image_" + std::to_string(type) + "_" + std::to_string(level) + ".png");
+        ASSERT_TRUE(cv::imwrite(file.string(), image, {cv::IMWRITE_PNG_COMPRESSION, level}));
+        std::ifstream in(file, std::ios::binary);
+        const std::string png((std::istreambuf_iterator<char>(in)), {});
+        for (int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR}) {
+          ASSERT_TRUE(io::decode_plain_png(png, flags)) << file;
+          EXPECT_TRUE(same(read_image_file(file, flags), cv::imread(file.string(), flags))) << file;
+        }
+      }
+}
+
+TEST(PngRows, OtherLayoutsAreLeftToOpenCvWithTheSameAnswer) {
+  const cv::Mat colour = images(CV_8UC3)[1];
+  struct Case {
+    std::string what;
+    Layout layout;
+  };
+  std::vector<Case> cases(8);
+  cases[0] = {"16-bit", {}};
+  cases[0].layout.depth = 16;
+  cases[1] = {"palette", {}};
+  cases[1].layout.colour_type = 3;
+  cases[2] = {"interlaced", {}};
+  cases[2].layout.interlace = 1;
+  cases[3] = {"transparency", {}};
+  cases[3].layout.extra_chunks = {"tRNS"};
+  cases[4] = {"gamma", {}};
+  cases[4].layout.extra_chunks = {"gAMA"};
+  cases[5] = {"filter type 5", {}};
+  cases[5].layout.bad_filter_row = 7;
+  cases[6] = {"rows inflating short", {}};
+  cases[6].layout.trim = 40;
+  cases[7] = {"rows inflating long", {}};
+  cases[7].layout.trim = -40;
+  for (const auto& c : cases)
+    EXPECT_FALSE(io::decode_plain_png(build_png(colour, {4, 1}, c.layout), cv::IMREAD_UNCHANGED)) << c.what;
+  // Text and time change no pixel: decoded here.
+  Layout text;
+  text.extra_chunks = {"tEXt", "tIME"};
+  const std::string with_text = build_png(colour, {4, 1}, text);
+  ASSERT_TRUE(io::decode_plain_png(with_text, cv::IMREAD_COLOR));
+  EXPECT_TRUE(same(*io::decode_plain_png(with_text, cv::IMREAD_COLOR), colour));
+
+  // Through read_image_file a layout left to OpenCV reads as OpenCV reads it.
+  test::TempDir dir;
+  const auto file = dir.path() / "gamma.png";
+  {
+    std::ofstream out(file, std::ios::binary);
+    const std::string png = build_png(colour, {2}, cases[4].layout);
+    out.write(png.data(), static_cast<std::streamsize>(png.size()));
+  }
+  EXPECT_TRUE(same(read_image_file(file, cv::IMREAD_COLOR), cv::imread(file.string(), cv::IMREAD_COLOR)));
+}

@@ -157,12 +157,27 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
   const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U, bytes.data());
   const std::string_view b = bytes;
   const auto damaged = [&](const std::string& format, const std::string& why) { fail("not a whole " + format + ": " + why); };
+  // OpenCV throws for a header it refuses (a size past its limits, say).
+  const auto decode = [&](int decode_flags) {
+    try {
+      return cv::imdecode(encoded, decode_flags);
+    } catch (const cv::Exception& e) {
+      fail("OpenCV refuses it: " + e.err);
+    }
+    return cv::Mat();
+  };
+  // OpenCV's DICOM decoder (GDCM) aborts the process on a damaged file
+  // instead of failing: refused before it is reached.
+  if (b.size() >= 132 && b.substr(128, 4) == "DICM")
+    fail("a DICOM file (\"DICM\" at byte 128), which touchcloud does not read; export the images as PNG, TIFF or JPEG");
   if (b.substr(0, 3) == "\xFF\xD8\xFF") {
     char why[JMSG_LENGTH_MAX];
     if (!jpeg_decodes_cleanly(bytes, why)) damaged("JPEG", std::string("libjpeg says \"") + why + "\"");
   } else if (b.substr(0, 8) == "\x89PNG\r\n\x1A\n") {
     if (const std::string why = png_problem(b); !why.empty()) damaged("PNG", why);
-    if (auto image = io::decode_plain_png(b, flags)) return std::move(*image);
+    io::PlainPng plain = io::decode_plain_png(b, flags);
+    if (!plain.damage.empty()) damaged("PNG", plain.damage);
+    if (plain.image) return std::move(*plain.image);
   } else if (b.substr(0, 2) == "BM") {
     if (const std::string why = bmp_problem(b); !why.empty()) damaged("BMP", why);
   } else if ((b.substr(0, 4) == std::string_view("II*\0", 4) || b.substr(0, 4) == std::string_view("MM\0*", 4)) &&
@@ -170,12 +185,12 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
     // OpenCV cannot turn floating-point samples into 8 bits (it warns on
     // the terminal and returns nothing): decoded as they are first (libtiff's
     // messages stay quiet in OpenCV), they say which.
-    const cv::Mat raw = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+    const cv::Mat raw = decode(cv::IMREAD_UNCHANGED);
     if (raw.empty()) damaged("TIFF", "it does not decode (corrupt or truncated)");
     if (raw.depth() == CV_32F || raw.depth() == CV_64F)
       fail("it holds floating-point samples (a depth or height map?); an 8- or 16-bit image is needed here");
   }
-  cv::Mat image = cv::imdecode(encoded, flags);
+  cv::Mat image = decode(flags);
   if (image.empty()) fail("not an image format OpenCV knows, or corrupt");
   return image;
 }

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <libdeflate.h>
@@ -66,52 +67,54 @@ struct Decompressor {
 
 }  // namespace
 
-std::optional<cv::Mat> decode_plain_png(std::string_view png, int flags) {
+PlainPng decode_plain_png(std::string_view png, int flags) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(png.data());
   if (png.size() < 8 + 12 + 13 || std::string_view(png.data() + 12, 4) != "IHDR" || big_endian_u32(bytes + 8) != 13)
-    return std::nullopt;
+    return {};
   const unsigned char* header = bytes + 16;
   const std::uint32_t width = big_endian_u32(header), height = big_endian_u32(header + 4);
   const int depth = header[8], colour_type = header[9];
   // 8 bits, grey (0) or RGB (2), deflate, adaptive filters, not interlaced;
   // sizes within OpenCV's own limits.
   if (depth != 8 || (colour_type != 0 && colour_type != 2) || header[10] != 0 || header[11] != 0 || header[12] != 0)
-    return std::nullopt;
+    return {};
   if (width == 0 || height == 0 || width > (1u << 20) || height > (1u << 20) ||
       static_cast<std::uint64_t>(width) * height > (1ull << 30))
-    return std::nullopt;
+    return {};
   const bool grey = colour_type == 0;
   if (!(flags == cv::IMREAD_UNCHANGED || flags == cv::IMREAD_COLOR || (flags == cv::IMREAD_GRAYSCALE && grey)))
-    return std::nullopt;
+    return {};
 
   thread_local std::vector<unsigned char> compressed, rows, zeros;
   thread_local std::unique_ptr<libdeflate_decompressor, Decompressor> decompressor(libdeflate_alloc_decompressor());
-  if (!decompressor) return std::nullopt;
+  if (!decompressor) return {};
   compressed.clear();
   bool ended = false;
   for (std::size_t at = 8 + 12 + 13; !ended;) {
-    if (png.size() - at < 12) return std::nullopt;
+    if (png.size() - at < 12) return {};
     const std::size_t length = big_endian_u32(bytes + at);
-    if (length > png.size() - at - 12) return std::nullopt;
+    if (length > png.size() - at - 12) return {};
     const std::string_view type(png.data() + at + 4, 4);
     if (type == "IDAT") compressed.insert(compressed.end(), bytes + at + 8, bytes + at + 8 + length);
     else if (type == "IEND") ended = true;
-    else if (!informative(type)) return std::nullopt;
+    else if (!informative(type)) return {};
     at += 12 + length;
   }
 
   const std::size_t bpp = grey ? 1 : 3, row_bytes = width * bpp, stride = row_bytes + 1;
   rows.resize(stride * height);
   std::size_t inflated = 0;
-  if (libdeflate_zlib_decompress(decompressor.get(), compressed.data(), compressed.size(), rows.data(), rows.size(),
-                                 &inflated) != LIBDEFLATE_SUCCESS ||
-      inflated != rows.size())
-    return std::nullopt;
+  const libdeflate_result inflating = libdeflate_zlib_decompress(decompressor.get(), compressed.data(),
+                                                                 compressed.size(), rows.data(), rows.size(), &inflated);
+  if (inflating == LIBDEFLATE_BAD_DATA) return {std::nullopt, "its image data (IDAT) does not inflate (corrupt)"};
+  if (inflating != LIBDEFLATE_SUCCESS || inflated != rows.size()) return {};
   zeros.assign(row_bytes, 0);
   const unsigned char* prior = zeros.data();
   for (std::size_t y = 0; y < height; ++y) {
     unsigned char* row = rows.data() + y * stride;
-    if (!unfilter_row(row[0], row + 1, prior, row_bytes, bpp)) return std::nullopt;
+    if (!unfilter_row(row[0], row + 1, prior, row_bytes, bpp))
+      return {std::nullopt, "row " + std::to_string(y) + " has filter type " + std::to_string(row[0]) +
+                                ", which PNG does not define (corrupt)"};
     prior = row + 1;
   }
 
@@ -122,7 +125,7 @@ std::optional<cv::Mat> decode_plain_png(std::string_view png, int flags) {
   if (grey && flags == cv::IMREAD_COLOR) cv::cvtColor(decoded, image, cv::COLOR_GRAY2BGR);
   else if (grey) decoded.copyTo(image);
   else cv::cvtColor(decoded, image, cv::COLOR_RGB2BGR);
-  return image;
+  return {std::move(image), {}};
 }
 
 }  // namespace touchcloud::io

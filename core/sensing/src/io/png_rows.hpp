@@ -7,18 +7,26 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include <opencv2/core.hpp>
 
 namespace touchcloud::io {
 
+struct PlainPng {
+  std::optional<cv::Mat> image;  // decoded here
+  std::string damage;            // or why its image data is corrupt
+};
+
 // The image cv::imdecode(png, flags) gives, pixel for pixel, for flags
 // IMREAD_UNCHANGED, IMREAD_COLOR (BGR) and, for a grey PNG,
-// IMREAD_GRAYSCALE; std::nullopt for any other layout or flags and for
-// data that does not inflate to exactly the declared rows (OpenCV then
-// decides). `png` is a whole file whose chunks' lengths and checksums the
-// caller has checked.
-std::optional<cv::Mat> decode_plain_png(std::string_view png, int flags);
+// IMREAD_GRAYSCALE. `damage` says why not where libpng would fail too (the
+// data does not inflate, a row's filter type is not PNG's; libpng would
+// print its complaint on the terminal). Neither for any other layout or
+// flags, nor for data that inflates to more or fewer bytes than the rows
+// (OpenCV then decides). `png` is a whole file whose chunks' lengths and
+// checksums the caller has checked.
+PlainPng decode_plain_png(std::string_view png, int flags);
 
 }  // namespace touchcloud::io

@@ -1,5 +1,7 @@
 #include "touchcloud/io/image_file.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
@@ -92,17 +94,54 @@ std::uint64_t little_endian(std::string_view b, std::size_t at, int bytes) {
 }
 
 // ---- PNG: every chunk whole, its CRC right, up to IEND (libpng would
-// print "libpng error: Read Error" on the terminal first).
+// print "libpng error: Read Error" on the terminal first), and the header
+// and chunk order libpng accepts (it prints its complaint otherwise).
+std::string png_header_problem(std::string_view ihdr) {
+  const std::uint64_t width = big_endian_u32(ihdr, 0), height = big_endian_u32(ihdr, 4);
+  const int depth = static_cast<unsigned char>(ihdr[8]), colour = static_cast<unsigned char>(ihdr[9]),
+            compression = static_cast<unsigned char>(ihdr[10]), filter = static_cast<unsigned char>(ihdr[11]),
+            interlace = static_cast<unsigned char>(ihdr[12]);
+  const auto allowed = [&](std::initializer_list<int> depths) {
+    return std::find(depths.begin(), depths.end(), depth) != depths.end();
+  };
+  const bool valid = colour == 0   ? allowed({1, 2, 4, 8, 16})
+                     : colour == 3 ? allowed({1, 2, 4, 8})
+                                   : (colour == 2 || colour == 4 || colour == 6) && allowed({8, 16});
+  const std::string declared = std::to_string(width) + " x " + std::to_string(height) + " pixels, bit depth " +
+                               std::to_string(depth) + ", colour type " + std::to_string(colour);
+  if (width == 0 || height == 0 || width > 0x7FFFFFFF || height > 0x7FFFFFFF || !valid || compression != 0 ||
+      filter != 0 || interlace > 1)
+    return "its header (IHDR) declares " + declared + ", compression " + std::to_string(compression) + ", filter " +
+           std::to_string(filter) + ", interlace " + std::to_string(interlace) + ", which PNG does not define (corrupt)";
+  if (width > 1000000 || height > 1000000) return "its header declares " + declared + ": over libpng's 1,000,000 px a side";
+  return "";
+}
+
 std::string png_problem(std::string_view b) {
+  bool image_data = false;
   for (std::size_t at = 8;;) {
     if (b.size() - at < 12) return "the file ends before its IEND chunk (truncated)";
     const std::uint64_t length = big_endian_u32(b, at);
     const std::string type(b.substr(at + 4, 4));
-    if (length > b.size() - at - 12)
-      return "chunk '" + type + "' at byte " + std::to_string(at) + " runs past the end of the file (truncated)";
+    const std::string where = "chunk '" + type + "' at byte " + std::to_string(at);
+    if (length > b.size() - at - 12) return where + " runs past the end of the file (truncated)";
     if (libdeflate_crc32(0, b.data() + at + 4, length + 4) != big_endian_u32(b, at + 8 + length))
-      return "chunk '" + type + "' at byte " + std::to_string(at) + " fails its checksum (corrupt)";
-    if (type == "IEND") return "";
+      return where + " fails its checksum (corrupt)";
+    if (!std::all_of(type.begin(), type.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }))
+      return "the chunk at byte " + std::to_string(at) + " has no valid type (corrupt)";
+    if ((at == 8) != (type == "IHDR")) return at == 8 ? "it does not begin with its header chunk IHDR (corrupt)"
+                                                       : where + " repeats the header (corrupt)";
+    if (type == "IHDR") {
+      if (length != 13) return where + " is " + std::to_string(length) + " bytes, not 13 (corrupt)";
+      if (std::string why = png_header_problem(b.substr(at + 8, 13)); !why.empty()) return why;
+    }
+    // A chunk whose type begins with a capital letter is critical: a
+    // decoder must understand it.
+    if (std::isupper(static_cast<unsigned char>(type[0])) && type != "IHDR" && type != "PLTE" && type != "IDAT" &&
+        type != "IEND")
+      return where + " is critical and unknown (corrupt)";
+    image_data = image_data || type == "IDAT";
+    if (type == "IEND") return image_data ? "" : "it ends (IEND) before any image data (IDAT) (corrupt)";
     at += 12 + length;
   }
 }

@@ -225,3 +225,48 @@ TEST(PngRows, CorruptImageDataIsRefusedSayingWhyAndPrintingNothing) {
     EXPECT_NE(e.find(file.string() + " cannot be read: " + expected), std::string::npos) << e;
   }
 }
+
+// Whole chunks with right checksums but a header or chunk order libpng
+// refuses (it would print "libpng error: ..." or a warning on the
+// terminal): refused by read_image_file saying what, printing nothing.
+TEST(PngFiles, HeadersAndChunkOrdersLibpngRefusesAreRefusedSayingWhat) {
+  const cv::Mat colour = images(CV_8UC3)[1];
+  const auto with_header = [&](int byte, char value) {
+    std::string png = build_png(colour, {1});
+    png[16 + byte] = value;  // IHDR's body starts at byte 16
+    const std::uint32_t crc = libdeflate_crc32(0, png.data() + 12, 17);
+    for (int i = 0; i < 4; ++i) png[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+    return png;
+  };
+  std::string no_data("\x89PNG\r\n\x1A\n", 8), header;
+  put_u32(header, 4);
+  put_u32(header, 4);
+  header += std::string("\x08\x02\x00\x00\x00", 5);
+  put_chunk(no_data, "IHDR", header);
+  std::string unknown_critical = no_data, bad_type = no_data;
+  put_chunk(no_data, "IEND", "");
+  put_chunk(unknown_critical, "ABCD", "x");
+  put_chunk(unknown_critical, "IEND", "");
+  put_chunk(bad_type, "I1x`", "x");
+  put_chunk(bad_type, "IEND", "");
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {with_header(3, '\0'), "its header (IHDR) declares 0 x 23 pixels"},
+      {with_header(8, '\x03'), "bit depth 3, colour type 2"},
+      {with_header(9, '\x05'), "colour type 5"},
+      {with_header(11, '\x01'), "filter 1"},
+      {with_header(12, '\x02'), "interlace 2, which PNG does not define"},
+      {with_header(1, '\x10'), "its header declares 1048613 x 23 pixels, bit depth 8, colour type 2: over libpng's"},
+      {no_data, "it ends (IEND) before any image data (IDAT)"},
+      {unknown_critical, "chunk 'ABCD' at byte 33 is critical and unknown"},
+      {bad_type, "the chunk at byte 33 has no valid type"}};
+  test::TempDir dir;
+  for (const auto& [png, expected] : files) {
+    const auto file = dir.path() / "refused.png";
+    std::ofstream(file, std::ios::binary).write(png.data(), static_cast<std::streamsize>(png.size()));
+    testing::internal::CaptureStderr();
+    const std::string e = test::input_error_of([&] { read_image_file(file, cv::IMREAD_UNCHANGED); });
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << expected;
+    EXPECT_NE(e.find(file.string() + " cannot be read: not a whole PNG: "), std::string::npos) << e;
+    EXPECT_NE(e.find(expected), std::string::npos) << e;
+  }
+}

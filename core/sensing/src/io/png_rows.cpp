@@ -102,6 +102,11 @@ PlainPng decode_plain_png(std::string_view png, int flags) {
   }
 
   const std::size_t bpp = grey ? 1 : 3, row_bytes = width * bpp, stride = row_bytes + 1;
+  // Deflate expands at most about 1032-fold: data that cannot hold the
+  // declared rows is refused before they are allocated.
+  if (stride * height / 1032 > compressed.size() + 1)
+    return {std::nullopt, "its image data (" + std::to_string(compressed.size()) + " bytes) cannot hold the " +
+                              std::to_string(width) + " x " + std::to_string(height) + " pixels it declares (truncated)"};
   rows.resize(stride * height);
   std::size_t inflated = 0;
   const libdeflate_result inflating = libdeflate_zlib_decompress(decompressor.get(), compressed.data(),

@@ -256,6 +256,7 @@ TEST(PngFiles, HeadersAndChunkOrdersLibpngRefusesAreRefusedSayingWhat) {
       {with_header(11, '\x01'), "filter 1"},
       {with_header(12, '\x02'), "interlace 2, which PNG does not define"},
       {with_header(1, '\x10'), "its header declares 1048613 x 23 pixels, bit depth 8, colour type 2: over libpng's"},
+      {with_header(1, '\x01'), "cannot hold the 65573 x 23 pixels it declares"},
       {no_data, "it ends (IEND) before any image data (IDAT)"},
       {unknown_critical, "chunk 'ABCD' at byte 33 is critical and unknown"},
       {bad_type, "the chunk at byte 33 has no valid type"}};

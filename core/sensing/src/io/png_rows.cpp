@@ -85,6 +85,7 @@ PlainPng decode_plain_png(std::string_view png, int flags) {
   if (!(flags == cv::IMREAD_UNCHANGED || flags == cv::IMREAD_COLOR || (flags == cv::IMREAD_GRAYSCALE && grey)))
     return {};
 
+  // Kept per thread: a sequence's next frame needs the same sizes.
   thread_local std::vector<unsigned char> compressed, rows, zeros;
   thread_local std::unique_ptr<libdeflate_decompressor, Decompressor> decompressor(libdeflate_alloc_decompressor());
   if (!decompressor) return {};

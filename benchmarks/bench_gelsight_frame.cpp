@@ -3,12 +3,15 @@
 // and masked in the image, their pixels given the gradients around them; the reference's are found once and kept) and
 // height_to_cloud (every 2nd pixel). The frame: a 320 x 240 press of the
 // calibration ball with dots on the gel (the simulator's `markers` and
-// `pixel_noise`), stored as a PNG and decoded, as a recording gives it. The
-// issue's target: >= 200 frames per second.
+// `pixel_noise`), stored as a PNG file and read as image_reader reads a
+// recording (read_colour_image_file). The target: >= 200 frames per
+// second.
 //
 //   Frame/<markers>/<decode>   markers 1: the dotted gel, masked; 0: a gel
 //                              without dots, markers: none; decode 1: the
-//                              PNG decoded inside the timed loop
+//                              PNG file read inside the timed loop
+//   ReadPng/<reader>           the PNG file alone: 1 read_colour_image_file,
+//                              0 OpenCV's cv::imread (libpng), side by side
 //
 //   build/benchmarks/bin/bench_gelsight_frame
 #include <benchmark/benchmark.h>
@@ -20,6 +23,7 @@
 #include <memory>
 
 #include "support/loaded_stage.hpp"
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/imaging/marker_mask.hpp"
 #include "touchcloud/sensor/photometric_calibration.hpp"
 #include "touchcloud/simulation/gelsight_simulation.hpp"
@@ -34,7 +38,7 @@ namespace {
 const std::string kBall = std::string(TOUCHCLOUD_SOURCE_DIR) + "/sample_clouds/gelsight_ball";
 
 struct Recording {
-  std::vector<uchar> frame_png;
+  std::filesystem::path frame_png;
   cv::Mat reference;
 };
 
@@ -48,7 +52,8 @@ Recording record(bool markers) {
   for (int i = 0; i < 100000; ++i)
     if (sim.step({1.0, 1.0}, false).travel_past_contact_mm >= 0.6) break;
   Recording r;
-  cv::imencode(".png", sim.render().image, r.frame_png);
+  r.frame_png = std::filesystem::temp_directory_path() / (markers ? "bench_gelsight_frame_dots.png" : "bench_gelsight_frame.png");
+  cv::imwrite(r.frame_png.string(), sim.render().image);
   r.reference = sim.render_reference().image;
   return r;
 }
@@ -83,13 +88,13 @@ void BM_Frame(benchmark::State& state) {
   reference->image = rec.reference;
   const MonoColourFramePtr reference_ptr = reference;
   auto decoded = std::make_shared<MonoColourFrame>();
-  decoded->image = cv::imdecode(rec.frame_png, cv::IMREAD_COLOR);
+  decoded->image = read_colour_image_file(rec.frame_png);
   MonoColourFramePtr frame = decoded;
   std::size_t points = 0;
   for (auto _ : state) {
     if (decode) {
       auto f = std::make_shared<MonoColourFrame>();
-      f->image = cv::imdecode(rec.frame_png, cv::IMREAD_COLOR);
+      f->image = read_colour_image_file(rec.frame_png);
       frame = f;
     }
     const auto height = std::any_cast<HeightMapPtr>(depth.run({{"image", frame}, {"reference", reference_ptr}}, "height"));
@@ -102,17 +107,25 @@ void BM_Frame(benchmark::State& state) {
 }
 BENCHMARK(BM_Frame)->ArgNames({"markers", "decode"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
+void BM_ReadPng(benchmark::State& state) {
+  const auto& file = recording(true).frame_png;
+  const bool ours = state.range(0) != 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize((ours ? read_colour_image_file(file) : cv::imread(file.string(), cv::IMREAD_COLOR)).data);
+}
+BENCHMARK(BM_ReadPng)->ArgName("reader")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 // The parts of markers: mask on the dotted frame: the detector alone, and
 // the mask (detection and ink mask; the reference kept).
 void BM_MarkerDetect(benchmark::State& state) {
-  const cv::Mat image = cv::imdecode(recording(true).frame_png, cv::IMREAD_COLOR);
+  const cv::Mat image = read_colour_image_file(recording(true).frame_png);
   imaging::MarkerDetector detector({});
   for (auto _ : state) benchmark::DoNotOptimize(detector.detect(image).size());
 }
 BENCHMARK(BM_MarkerDetect)->Unit(benchmark::kMillisecond);
 
 void BM_MarkerMask(benchmark::State& state) {
-  const cv::Mat image = cv::imdecode(recording(true).frame_png, cv::IMREAD_COLOR);
+  const cv::Mat image = read_colour_image_file(recording(true).frame_png);
   imaging::MarkerMask mask({});
   for (auto _ : state) benchmark::DoNotOptimize(mask.masks(image, recording(true).reference).excluded.mask.data);
 }

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-600}
 build=${TOUCHCLOUD_FUZZ_BUILD_DIR:-build-fuzz}
 scripts/install-deps.sh --fuzz
-targets=(fuzz_pipeline fuzz_scene fuzz_pcd fuzz_ply_cloud fuzz_ply_mesh fuzz_stl fuzz_obj)
+targets=(fuzz_pipeline fuzz_scene fuzz_pcd fuzz_ply_cloud fuzz_ply_mesh fuzz_stl fuzz_obj fuzz_png)
 # TOUCHCLOUD_FUZZ_SKIP="a b": targets not run (e.g. one with an open find).
 for skip in ${TOUCHCLOUD_FUZZ_SKIP:-}; do
   targets=("${targets[@]/$skip}")

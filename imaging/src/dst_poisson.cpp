@@ -1,5 +1,6 @@
 #include "touchcloud/imaging/dst_poisson.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -48,7 +49,6 @@ DstPoisson::DstPoisson(int width_px, int height_px)
     throw std::runtime_error("FFTW could not plan " + std::to_string(pairs) + " DFTs of " + std::to_string(period_) +
                              " points");
   }
-  rows_ = cv::Mat::zeros(ny_, columns_, CV_64FC1);
   spectrum_.create(ny_, columns_, CV_64FC1);
   // Row frequency k turns the 5-point Laplacian into H(l - 1) + d_k H(l) +
   // H(l + 1) down the column, d_k = 2 cos(pi (k + 1) / (columns + 1)) - 4,
@@ -111,21 +111,25 @@ DstPoisson::~DstPoisson() {
 // Rows 2i and 2i + 1, oddly extended to period_ points, as the real and
 // imaginary parts of one complex row: its DFT at k + 1 is -i S_2i(k) +
 // S_2i+1(k), with S FFTW's RODFT00 (2 sum_j x_j sin(pi (j + 1) (k + 1) /
-// (columns + 1))).
-void DstPoisson::transform_rows(const cv::Mat& rows, cv::Mat& spectrum) {
+// (columns + 1))). `row(l, values)` writes row l's columns_ values.
+template <class Row>
+void DstPoisson::transform(Row&& row) {
   auto* wave = static_cast<fftw_complex*>(wave_);
   const int pairs = (ny_ + 1) / 2;
-  static const double kZeros[1] = {0};
+  std::vector<double>& a = row_pair_[0];
+  std::vector<double>& b = row_pair_[1];
+  a.resize(static_cast<std::size_t>(columns_));
+  b.resize(static_cast<std::size_t>(columns_));
   for (int i = 0; i < pairs; ++i) {
     double* z = wave[static_cast<std::size_t>(i) * period_];
-    const double* a = rows.ptr<double>(2 * i);
-    const double* b = 2 * i + 1 < ny_ ? rows.ptr<double>(2 * i + 1) : kZeros;
-    const std::size_t b_step = 2 * i + 1 < ny_ ? 1 : 0;
+    row(2 * i, a.data());
+    if (2 * i + 1 < ny_) row(2 * i + 1, b.data());
+    else std::fill(b.begin(), b.end(), 0.0);
     double* mirror = z + 2 * static_cast<std::size_t>(period_ - 1);  // z[period - 1 - k]
     z[0] = z[1] = 0;
     z[2 * (columns_ + 1)] = z[2 * (columns_ + 1) + 1] = 0;
     for (int k = 0; k < columns_; ++k, mirror -= 2) {
-      const double re = a[k], im = b[k * b_step];
+      const double re = a[k], im = b[k];
       z[2 * k + 2] = re;
       z[2 * k + 3] = im;
       mirror[0] = -re;
@@ -133,14 +137,18 @@ void DstPoisson::transform_rows(const cv::Mat& rows, cv::Mat& spectrum) {
     }
   }
   fftw_execute(static_cast<fftw_plan>(plan_));
+}
+
+// The transform of row l at column k, written by `out(l, k, value)`.
+template <class Out>
+void DstPoisson::transformed_rows(int columns, Out&& out) const {
   const auto* transformed = static_cast<const fftw_complex*>(transformed_);
+  const int pairs = (ny_ + 1) / 2;
   for (int i = 0; i < pairs; ++i) {
     const fftw_complex* z = transformed + static_cast<std::size_t>(i) * period_;
-    double* a = spectrum.ptr<double>(2 * i);
-    for (int k = 0; k < columns_; ++k) a[k] = -z[k + 1][1];
+    for (int k = 0; k < columns; ++k) out(2 * i, k, -z[k + 1][1]);
     if (2 * i + 1 == ny_) continue;
-    double* b = spectrum.ptr<double>(2 * i + 1);
-    for (int k = 0; k < columns_; ++k) b[k] = z[k + 1][0];
+    for (int k = 0; k < columns; ++k) out(2 * i + 1, k, z[k + 1][0]);
   }
 }
 
@@ -233,29 +241,30 @@ void DstPoisson::solve(const cv::Mat& p, const cv::Mat& q, cv::Mat& height) {
   CV_Assert(p.type() == CV_64FC1 && p.rows == height_ && p.cols == width_ - 1);
   CV_Assert(q.type() == CV_64FC1 && q.rows == height_ - 1 && q.cols == width_);
   // The divergence of the gradients on the interior: the 5-point Laplacian
-  // of H (the extra columns stay zero).
-  for (int v = 1; v <= ny_; ++v) {
+  // of H (the extra columns stay zero), transformed as it is made.
+  transform([&](int l, double* out) {
+    const int v = l + 1;
     const double* pr = p.ptr<double>(v);
     const double* qr = q.ptr<double>(v);
     const double* qu = q.ptr<double>(v - 1);
-    double* out = rows_.ptr<double>(v - 1);
     for (int u = 1; u <= nx_; ++u) out[u - 1] = pr[u] - pr[u - 1] + qr[u] - qu[u];
-  }
-  transform_rows(rows_, spectrum_);
+    for (int k = nx_; k < columns_; ++k) out[k] = 0;
+  });
+  transformed_rows(columns_, [&](int l, int k, double value) { spectrum_.at<double>(l, k) = value; });
   solve_columns(spectrum_);
   if (columns_ > nx_) cancel_extra_columns();
-  // The sine transform applied twice scales by 2 (columns + 1).
-  transform_rows(spectrum_, spectrum_);
+  // The sine transform applied twice scales by 2 (columns + 1); the extra
+  // columns are left out.
+  transform([&](int l, double* out) {
+    const double* in = spectrum_.ptr<double>(l);
+    std::copy(in, in + columns_, out);
+  });
   const double scale = 1.0 / period_;
   height.create(height_, width_, CV_64FC1);
   height.row(0).setTo(0);
   height.row(height_ - 1).setTo(0);
-  for (int v = 1; v <= ny_; ++v) {
-    const double* in = spectrum_.ptr<double>(v - 1);
-    double* row = height.ptr<double>(v);
-    row[0] = row[width_ - 1] = 0;
-    for (int u = 1; u <= nx_; ++u) row[u] = in[u - 1] * scale;
-  }
+  for (int v = 1; v <= ny_; ++v) height.at<double>(v, 0) = height.at<double>(v, width_ - 1) = 0;
+  transformed_rows(nx_, [&](int l, int k, double value) { height.at<double>(l + 1, k + 1) = value * scale; });
 }
 
 }  // namespace touchcloud::imaging

@@ -43,31 +43,35 @@ void PhotometricDepthSolver::gradients(const cv::Mat& image, const cv::Mat& refe
   const int w = image.cols, h = image.rows;
   gx_.create(h, w, CV_64FC1);
   gy_.create(h, w, CV_64FC1);
+  gx_.setTo(0);
+  gy_.setTo(0);
   out.gx = gx_;
   out.gy = gy_;
+  // The largest channel difference of each pixel, in OpenCV's vectorised
+  // passes; most of a frame is flat gel, so the polynomial runs only where
+  // it exceeds `flat`.
+  cv::absdiff(image, reference, channel_difference_);
+  cv::split(channel_difference_, channels_);
   cv::Mat& difference = difference_;
-  difference.create(h, w, CV_8UC1);
+  cv::max(channels_[0], channels_[1], difference);
+  cv::max(difference, channels_[2], difference);
   const int flat = static_cast<int>(std::floor(options_.flat_grey));
   const double per_grey = 1.0 / calibration_.scale_grey;
   const int degree = calibration_.degree;
   const std::size_t terms = exponents_.size();
   const double* coefficient_x = calibration_.gx.data();
   const double* coefficient_y = calibration_.gy.data();
+  long sloped = 0;
   for (int v = 0; v < h; ++v) {
     const cv::Vec3b* a = image.ptr<cv::Vec3b>(v);
     const cv::Vec3b* b = reference.ptr<cv::Vec3b>(v);
+    const std::uint8_t* d = difference.ptr<std::uint8_t>(v);
     double* gx = out.gx.ptr<double>(v);
     double* gy = out.gy.ptr<double>(v);
-    std::uint8_t* d = difference.ptr<std::uint8_t>(v);
     for (int u = 0; u < w; ++u) {
+      if (d[u] <= flat) continue;
+      ++sloped;
       const int db = a[u][0] - b[u][0], dg = a[u][1] - b[u][1], dr = a[u][2] - b[u][2];
-      const int largest = std::max({std::abs(db), std::abs(dg), std::abs(dr)});
-      d[u] = static_cast<std::uint8_t>(largest);
-      if (largest <= flat) {
-        ++out.flat_pixels;
-        gx[u] = gy[u] = 0;
-        continue;
-      }
       // calibration_.gradient(dr, dg, db), term for term in its order (a
       // call per pixel cost more than the polynomial).
       const double r = dr * per_grey, g = dg * per_grey, bl = db * per_grey;
@@ -84,6 +88,7 @@ void PhotometricDepthSolver::gradients(const cv::Mat& image, const cv::Mat& refe
       gy[u] = y;
     }
   }
+  out.flat_pixels += static_cast<long>(w) * h - sloped;
 }
 
 DepthResult PhotometricDepthSolver::integrate(DepthResult out) {

@@ -71,7 +71,7 @@ class HeightToCloud final : public Stage {
     const auto& map = io.input<HeightMapPtr>("height");
     require_map(map, points_ == HeightPoints::Contact);
     double max_abs = 0;
-    cv::minMaxLoc(cv::abs(map->height_mm), nullptr, &max_abs, nullptr, nullptr, map->valid);
+    if (flat_press_mm_) cv::minMaxLoc(cv::abs(map->height_mm), nullptr, &max_abs, nullptr, nullptr, map->valid);
     const bool flat_press = flat_press_mm_ && max_abs == 0;
     if (flat_press) {
       ++flat_presses_;
@@ -82,34 +82,38 @@ class HeightToCloud final : public Stage {
     if (const auto* p = io.optional_input<SensorPose>("pose")) pose = *p;
     auto points = std::make_shared<PointCloud>(), reference = std::make_shared<PointCloud>();
     auto base = std::make_shared<PointCloud>();
-    const bool want_base = io.wants("cloud_base");
+    const bool want_base = io.wants("cloud_base"), want_tactile = io.wants("tactile");
     auto tactile = std::make_shared<TactileCloud>();
     const cv::Mat& h = map->height_mm;
     const std::size_t most = static_cast<std::size_t>((h.rows + stride_px_ - 1) / stride_px_) *
                              static_cast<std::size_t>((h.cols + stride_px_ - 1) / stride_px_);
     points->reserve(most);
-    reference->reserve(most);
     if (want_base) base->reserve(most);
-    tactile->displacement_mm.reserve(most);
-    tactile->marker_ids.reserve(most);
+    if (want_tactile) {
+      reference->reserve(most);
+      tactile->displacement_mm.reserve(most);
+      tactile->marker_ids.reserve(most);
+    }
     for (int v = stride_px_ / 2; v < h.rows; v += stride_px_)
       for (int u = stride_px_ / 2; u < h.cols; u += stride_px_) {
         if (!map->valid.at<std::uint8_t>(v, u)) continue;
         if (points_ == HeightPoints::Contact && !flat_press && !map->contact_mask.at<std::uint8_t>(v, u)) continue;
         const double height = flat_press ? *flat_press_mm_ : h.at<float>(v, u);
-        const Eigen::Vector3d p = map->sensor_point(u, v, height), r = map->sensor_point(u, v, 0);
+        const Eigen::Vector3d p = map->sensor_point(u, v, height);
         points->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
-        reference->push_back(pcl::PointXYZ(float(r.x()), float(r.y()), float(r.z())));
         if (want_base) {
           const Eigen::Vector3d b = pose.base_from_sensor * p;
           base->push_back(pcl::PointXYZ(float(b.x()), float(b.y()), float(b.z())));
         }
+        if (!want_tactile) continue;
+        const Eigen::Vector3d r = map->sensor_point(u, v, 0);
+        reference->push_back(pcl::PointXYZ(float(r.x()), float(r.y()), float(r.z())));
         tactile->displacement_mm.push_back(std::abs(height));
         tactile->marker_ids.push_back(v * h.cols + u);
       }
     ctx.metric("points", static_cast<double>(points->size()), "points");
     if (flat_press_mm_) ctx.metric("flat_presses", static_cast<double>(flat_presses_), "frames");
-    if (io.wants("tactile")) {
+    if (want_tactile) {
       tactile->points = points;
       tactile->reference = reference;
       tactile->timestamp_s = map->timestamp_s;

@@ -2,9 +2,12 @@
 // crash, and a clear InputError for the corrupt ones. They also seed the fuzzers.
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "test_support.hpp"
 #include "touchcloud/error.hpp"
 #include "touchcloud/io/cloud_file.hpp"
+#include "touchcloud/io/image_file.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
 
 using namespace touchcloud;
@@ -69,4 +72,22 @@ TEST(FuzzRegressions, PcdHeaderWhoseDataKeyHasATail) {
   const fs::path file = kCorpus / "fuzz_pcd/crash-data-key-prefix.pcd";
   const std::string msg = input_error(file, [](const fs::path& f) { read_cloud_file(f); });
   EXPECT_NE(msg.find("crash-data-key-prefix.pcd is not a readable pcd point cloud: line "), std::string::npos) << msg;
+}
+
+// OpenCV's DICOM decoder (GDCM) aborted the process on this file: 128 bytes,
+// then "DICM" and two more.
+TEST(FuzzRegressions, DamagedDicomThatAborted) {
+  const fs::path file = kCorpus / "fuzz_png/crash-damaged-dicom.png";
+  const std::string msg = input_error(file, [](const fs::path& f) { read_image_file(f, cv::IMREAD_COLOR); });
+  EXPECT_NE(msg.find("the image " + file.string() + " cannot be read: a DICOM file"), std::string::npos) << msg;
+}
+
+// A whole PNG declaring 524,295 x 327,680 pixels: cv::imdecode threw
+// cv::Exception past read_image_file (std::terminate in a stage).
+TEST(FuzzRegressions, PngTooLargeForOpenCvThatThrew) {
+  const fs::path file = kCorpus / "fuzz_png/crash-oversized-header.png";
+  for (int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR}) {
+    const std::string msg = input_error(file, [&](const fs::path& f) { read_image_file(f, flags); });
+    EXPECT_NE(msg.find("the image " + file.string() + " cannot be read: OpenCV refuses it"), std::string::npos) << msg;
+  }
 }

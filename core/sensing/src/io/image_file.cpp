@@ -1,5 +1,7 @@
 #include "touchcloud/io/image_file.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
@@ -9,13 +11,14 @@
 #include <string_view>
 
 #include <jpeglib.h>
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/path_text.hpp"
+#include "png_rows.hpp"
 
 namespace fs = std::filesystem;
 
@@ -91,18 +94,54 @@ std::uint64_t little_endian(std::string_view b, std::size_t at, int bytes) {
 }
 
 // ---- PNG: every chunk whole, its CRC right, up to IEND (libpng would
-// print "libpng error: Read Error" on the terminal first).
+// print "libpng error: Read Error" on the terminal first), and the header
+// and chunk order libpng accepts (it prints its complaint otherwise).
+std::string png_header_problem(std::string_view ihdr) {
+  const std::uint64_t width = big_endian_u32(ihdr, 0), height = big_endian_u32(ihdr, 4);
+  const int depth = static_cast<unsigned char>(ihdr[8]), colour = static_cast<unsigned char>(ihdr[9]),
+            compression = static_cast<unsigned char>(ihdr[10]), filter = static_cast<unsigned char>(ihdr[11]),
+            interlace = static_cast<unsigned char>(ihdr[12]);
+  const auto allowed = [&](std::initializer_list<int> depths) {
+    return std::find(depths.begin(), depths.end(), depth) != depths.end();
+  };
+  const bool valid = colour == 0   ? allowed({1, 2, 4, 8, 16})
+                     : colour == 3 ? allowed({1, 2, 4, 8})
+                                   : (colour == 2 || colour == 4 || colour == 6) && allowed({8, 16});
+  const std::string declared = std::to_string(width) + " x " + std::to_string(height) + " pixels, bit depth " +
+                               std::to_string(depth) + ", colour type " + std::to_string(colour);
+  if (width == 0 || height == 0 || width > 0x7FFFFFFF || height > 0x7FFFFFFF || !valid || compression != 0 ||
+      filter != 0 || interlace > 1)
+    return "its header (IHDR) declares " + declared + ", compression " + std::to_string(compression) + ", filter " +
+           std::to_string(filter) + ", interlace " + std::to_string(interlace) + ", which PNG does not define (corrupt)";
+  if (width > 1000000 || height > 1000000) return "its header declares " + declared + ": over libpng's 1,000,000 px a side";
+  return "";
+}
+
 std::string png_problem(std::string_view b) {
+  bool image_data = false;
   for (std::size_t at = 8;;) {
     if (b.size() - at < 12) return "the file ends before its IEND chunk (truncated)";
     const std::uint64_t length = big_endian_u32(b, at);
     const std::string type(b.substr(at + 4, 4));
-    if (length > b.size() - at - 12)
-      return "chunk '" + type + "' at byte " + std::to_string(at) + " runs past the end of the file (truncated)";
-    const auto* typed = reinterpret_cast<const Bytef*>(b.data() + at + 4);
-    if (crc32(0, typed, static_cast<uInt>(length + 4)) != big_endian_u32(b, at + 8 + length))
-      return "chunk '" + type + "' at byte " + std::to_string(at) + " fails its checksum (corrupt)";
-    if (type == "IEND") return "";
+    const std::string where = "chunk '" + type + "' at byte " + std::to_string(at);
+    if (length > b.size() - at - 12) return where + " runs past the end of the file (truncated)";
+    if (libdeflate_crc32(0, b.data() + at + 4, length + 4) != big_endian_u32(b, at + 8 + length))
+      return where + " fails its checksum (corrupt)";
+    if (!std::all_of(type.begin(), type.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }))
+      return "the chunk at byte " + std::to_string(at) + " has no valid type (corrupt)";
+    if ((at == 8) != (type == "IHDR")) return at == 8 ? "it does not begin with its header chunk IHDR (corrupt)"
+                                                       : where + " repeats the header (corrupt)";
+    if (type == "IHDR") {
+      if (length != 13) return where + " is " + std::to_string(length) + " bytes, not 13 (corrupt)";
+      if (std::string why = png_header_problem(b.substr(at + 8, 13)); !why.empty()) return why;
+    }
+    // A chunk whose type begins with a capital letter is critical: a
+    // decoder must understand it.
+    if (std::isupper(static_cast<unsigned char>(type[0])) && type != "IHDR" && type != "PLTE" && type != "IDAT" &&
+        type != "IEND")
+      return where + " is critical and unknown (corrupt)";
+    image_data = image_data || type == "IDAT";
+    if (type == "IEND") return image_data ? "" : "it ends (IEND) before any image data (IDAT) (corrupt)";
     at += 12 + length;
   }
 }
@@ -157,11 +196,27 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
   const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U, bytes.data());
   const std::string_view b = bytes;
   const auto damaged = [&](const std::string& format, const std::string& why) { fail("not a whole " + format + ": " + why); };
+  // OpenCV throws for a header it refuses (a size past its limits, say).
+  const auto decode = [&](int decode_flags) {
+    try {
+      return cv::imdecode(encoded, decode_flags);
+    } catch (const cv::Exception& e) {
+      fail("OpenCV refuses it: " + e.err);
+    }
+    return cv::Mat();
+  };
+  // OpenCV's DICOM decoder (GDCM) aborts the process on a damaged file
+  // instead of failing: refused before it is reached.
+  if (b.size() >= 132 && b.substr(128, 4) == "DICM")
+    fail("a DICOM file (\"DICM\" at byte 128), which touchcloud does not read; export the images as PNG, TIFF or JPEG");
   if (b.substr(0, 3) == "\xFF\xD8\xFF") {
     char why[JMSG_LENGTH_MAX];
     if (!jpeg_decodes_cleanly(bytes, why)) damaged("JPEG", std::string("libjpeg says \"") + why + "\"");
   } else if (b.substr(0, 8) == "\x89PNG\r\n\x1A\n") {
     if (const std::string why = png_problem(b); !why.empty()) damaged("PNG", why);
+    io::PlainPng plain = io::decode_plain_png(b, flags);
+    if (!plain.damage.empty()) damaged("PNG", plain.damage);
+    if (plain.image) return std::move(*plain.image);
   } else if (b.substr(0, 2) == "BM") {
     if (const std::string why = bmp_problem(b); !why.empty()) damaged("BMP", why);
   } else if ((b.substr(0, 4) == std::string_view("II*\0", 4) || b.substr(0, 4) == std::string_view("MM\0*", 4)) &&
@@ -169,12 +224,12 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
     // OpenCV cannot turn floating-point samples into 8 bits (it warns on
     // the terminal and returns nothing): decoded as they are first (libtiff's
     // messages stay quiet in OpenCV), they say which.
-    const cv::Mat raw = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+    const cv::Mat raw = decode(cv::IMREAD_UNCHANGED);
     if (raw.empty()) damaged("TIFF", "it does not decode (corrupt or truncated)");
     if (raw.depth() == CV_32F || raw.depth() == CV_64F)
       fail("it holds floating-point samples (a depth or height map?); an 8- or 16-bit image is needed here");
   }
-  cv::Mat image = cv::imdecode(encoded, flags);
+  cv::Mat image = decode(flags);
   if (image.empty()) fail("not an image format OpenCV knows, or corrupt");
   return image;
 }

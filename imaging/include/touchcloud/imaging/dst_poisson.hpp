@@ -26,6 +26,8 @@
 // on the border the solution is H again, to rounding.
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 namespace touchcloud::imaging {
@@ -46,7 +48,10 @@ class DstPoisson {
   void solve(const cv::Mat& p, const cv::Mat& q, cv::Mat& height);
 
  private:
-  void transform_rows(const cv::Mat& rows, cv::Mat& spectrum);  // the sine transform of each row, two at a time
+  template <class Row>
+  void transform(Row&& row);  // the sine transform of each row, two at a time
+  template <class Out>
+  void transformed_rows(int columns, Out&& out) const;  // its result, row by row
   void solve_columns(cv::Mat& spectrum) const;                 // Thomas down every column at once
   void cancel_extra_columns();                                 // the capacitance correction on spectrum_
 
@@ -56,7 +61,8 @@ class DstPoisson {
   void* wave_ = nullptr;    // fftw_complex[(ny_ + 1) / 2][period_]: two rows' odd extensions
   void* transformed_ = nullptr;  // the same shape: their DFTs
   void* plan_ = nullptr;    // fftw_plan: every pair of rows' DFT
-  cv::Mat rows_, spectrum_;  // ny_ x columns_: the divergence, then the transformed height
+  cv::Mat spectrum_;  // ny_ x columns_: the transformed divergence, then the transformed height
+  std::vector<double> row_pair_[2];  // two rows on their way into the transform
   // Thomas' elimination for each row frequency k, fixed by the size: the
   // reciprocal pivots, which are also the eliminated super-diagonal (ny x
   // columns_).

@@ -67,6 +67,8 @@ class PhotometricDepthSolver {
   std::vector<std::array<int, 3>> exponents_;  // the polynomial's terms: powers of r, g, b
   cv::Mat p_, q_;  // staggered gradients, reused
   cv::Mat gx_, gy_, difference_, height_;  // scratch of one frame, reused
+  cv::Mat channel_difference_;
+  std::vector<cv::Mat> channels_;
   ExcludedFill excluded_fill_;
 };
 

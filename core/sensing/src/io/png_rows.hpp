@@ -1,0 +1,32 @@
+// The PNG layout cameras and OpenCV's writer give (8-bit grey or RGB, not
+// interlaced, no palette, transparency or colour-space chunk) decoded
+// without libpng: libdeflate inflates the image data in about half of
+// zlib's time, and the rows are unfiltered here. Reading a recorded
+// 320 x 240 colour frame is otherwise a third of a GelSight-type frame's
+// path to a height map. Every other layout is left to OpenCV.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <opencv2/core.hpp>
+
+namespace touchcloud::io {
+
+struct PlainPng {
+  std::optional<cv::Mat> image;  // decoded here
+  std::string damage;            // or why its image data is corrupt
+};
+
+// The image cv::imdecode(png, flags) gives, pixel for pixel, for flags
+// IMREAD_UNCHANGED, IMREAD_COLOR (BGR) and, for a grey PNG,
+// IMREAD_GRAYSCALE. `damage` says why not where libpng would fail too (the
+// data does not inflate, a row's filter type is not PNG's; libpng would
+// print its complaint on the terminal). Neither for any other layout or
+// flags, nor for data that inflates to more or fewer bytes than the rows
+// (OpenCV then decides). `png` is a whole file whose chunks' lengths and
+// checksums the caller has checked.
+PlainPng decode_plain_png(std::string_view png, int flags);
+
+}  // namespace touchcloud::io

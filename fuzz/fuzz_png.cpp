@@ -1,5 +1,6 @@
 // PNG files through read_image_file (chunk checksums, then the common layout
-// inflated without libpng): an image or an InputError, whatever the bytes;
+// inflated without libpng, every other one decoded by libpng with its
+// messages caught): an image or an InputError, whatever the bytes;
 // and where both read it, the pixels OpenCV's own decoder gives, or a crash.
 // Each chunk's CRC is set right first, so that mutations reach the decoders
 // rather than stopping at the checksum.

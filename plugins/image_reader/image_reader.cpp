@@ -32,7 +32,7 @@ class ImageReader final : public Stage {
   void declare_parameters(ParameterSet& p) override {
     p.add("path", path_, std::string())
         .input_file()
-        .doc("image file (relative to the pipeline file); '{iteration}' becomes the loop iteration, a '*' or '?' in "
+        .doc("image file: PNG, JPEG, TIFF, BMP, PNM or WebP (relative to the pipeline file); '{iteration}' becomes the loop iteration, a '*' or '?' in "
              "the file name walks the matching files in natural order (quote such a path in YAML)");
     p.add("view", view_, CameraView::Mono,
           {{"mono", CameraView::Mono}, {"left", CameraView::Left}, {"right", CameraView::Right}})

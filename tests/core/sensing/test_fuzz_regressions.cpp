@@ -88,6 +88,9 @@ TEST(FuzzRegressions, PngTooLargeForOpenCvThatThrew) {
   const fs::path file = kCorpus / "fuzz_png/crash-oversized-header.png";
   for (int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR}) {
     const std::string msg = input_error(file, [&](const fs::path& f) { read_image_file(f, flags); });
-    EXPECT_NE(msg.find("the image " + file.string() + " cannot be read: OpenCV refuses it"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("the image " + file.string() + " cannot be read: not a whole PNG: its header declares 524295 x "
+                       "327680 pixels, more than OpenCV decodes"),
+              std::string::npos)
+        << msg;
   }
 }

@@ -18,6 +18,7 @@
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/path_text.hpp"
+#include "png_libpng.hpp"
 #include "png_rows.hpp"
 
 namespace fs = std::filesystem;
@@ -170,6 +171,22 @@ std::string bmp_problem(std::string_view b) {
   return "";
 }
 
+// ---- Formats touchcloud leaves to OpenCV unchecked (PNM, WebP: decoders
+// that fail without a word) pass; the others OpenCV knows are refused by
+// name. Their decoders print on the terminal (OpenJPEG through OpenCV's
+// log, OpenEXR) and no tactile camera writes them.
+std::string unread_format(std::string_view b) {
+  if (b.size() >= 2 && b[0] == 'P' && b[1] >= '1' && b[1] <= '7') return "";  // PBM, PGM, PPM, PAM
+  if (b.substr(0, 4) == "RIFF" && b.substr(8, 4) == "WEBP") return "";
+  if (b.substr(0, 12) == std::string_view("\0\0\0\x0CjP  \r\n\x87\n", 12) || b.substr(0, 4) == "\xFF\x4F\xFF\x51")
+    return "a JPEG 2000 file";
+  if (b.substr(0, 4) == "\x76\x2F\x31\x01") return "an OpenEXR file";
+  if (b.substr(0, 10) == "#?RADIANCE" || b.substr(0, 6) == "#?RGBE") return "a Radiance HDR file";
+  if (b.substr(0, 4) == "\x59\xA6\x6A\x95") return "a Sun raster file";
+  if (b.substr(0, 2) == "PF" || b.substr(0, 2) == "Pf") return "a PFM file";
+  return "in no image format touchcloud reads";
+}
+
 }  // namespace
 
 cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name) {
@@ -214,23 +231,29 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
     if (!jpeg_decodes_cleanly(bytes, why)) damaged("JPEG", std::string("libjpeg says \"") + why + "\"");
   } else if (b.substr(0, 8) == "\x89PNG\r\n\x1A\n") {
     if (const std::string why = png_problem(b); !why.empty()) damaged("PNG", why);
-    io::PlainPng plain = io::decode_plain_png(b, flags);
-    if (!plain.damage.empty()) damaged("PNG", plain.damage);
-    if (plain.image) return std::move(*plain.image);
+    for (const auto decoder : {io::decode_plain_png, io::decode_png_with_libpng}) {
+      io::DecodedPng decoded = decoder(b, flags);
+      if (!decoded.damage.empty()) damaged("PNG", decoded.damage);
+      if (decoded.image) return std::move(*decoded.image);
+    }
   } else if (b.substr(0, 2) == "BM") {
     if (const std::string why = bmp_problem(b); !why.empty()) damaged("BMP", why);
-  } else if ((b.substr(0, 4) == std::string_view("II*\0", 4) || b.substr(0, 4) == std::string_view("MM\0*", 4)) &&
-             flags != cv::IMREAD_UNCHANGED && !(flags & cv::IMREAD_ANYDEPTH)) {
+  } else if (b.substr(0, 4) == std::string_view("II*\0", 4) || b.substr(0, 4) == std::string_view("MM\0*", 4) ||
+             b.substr(0, 4) == std::string_view("II+\0", 4) || b.substr(0, 4) == std::string_view("MM\0+", 4)) {
     // OpenCV cannot turn floating-point samples into 8 bits (it warns on
     // the terminal and returns nothing): decoded as they are first (libtiff's
     // messages stay quiet in OpenCV), they say which.
-    const cv::Mat raw = decode(cv::IMREAD_UNCHANGED);
-    if (raw.empty()) damaged("TIFF", "it does not decode (corrupt or truncated)");
-    if (raw.depth() == CV_32F || raw.depth() == CV_64F)
-      fail("it holds floating-point samples (a depth or height map?); an 8- or 16-bit image is needed here");
+    if (flags != cv::IMREAD_UNCHANGED && !(flags & cv::IMREAD_ANYDEPTH)) {
+      const cv::Mat raw = decode(cv::IMREAD_UNCHANGED);
+      if (raw.empty()) damaged("TIFF", "it does not decode (corrupt or truncated)");
+      if (raw.depth() == CV_32F || raw.depth() == CV_64F)
+        fail("it holds floating-point samples (a depth or height map?); an 8- or 16-bit image is needed here");
+    }
+  } else if (const std::string format = unread_format(b); !format.empty()) {
+    fail(format + "; touchcloud reads PNG, JPEG, TIFF, BMP, PNM (PGM, PPM) and WebP images");
   }
   cv::Mat image = decode(flags);
-  if (image.empty()) fail("not an image format OpenCV knows, or corrupt");
+  if (image.empty()) fail("it does not decode (corrupt or truncated)");
   return image;
 }
 

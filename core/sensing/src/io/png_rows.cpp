@@ -67,7 +67,7 @@ struct Decompressor {
 
 }  // namespace
 
-PlainPng decode_plain_png(std::string_view png, int flags) {
+DecodedPng decode_plain_png(std::string_view png, int flags) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(png.data());
   if (png.size() < 8 + 12 + 13 || std::string_view(png.data() + 12, 4) != "IHDR" || big_endian_u32(bytes + 8) != 13)
     return {};

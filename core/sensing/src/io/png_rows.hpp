@@ -3,7 +3,8 @@
 // without libpng: libdeflate inflates the image data in about half of
 // zlib's time, and the rows are unfiltered here. Reading a recorded
 // 320 x 240 colour frame is otherwise a third of a GelSight-type frame's
-// path to a height map. Every other layout is left to OpenCV.
+// path to a height map. Every other layout is left to libpng
+// (png_libpng.hpp).
 #pragma once
 
 #include <optional>
@@ -14,9 +15,11 @@
 
 namespace touchcloud::io {
 
-struct PlainPng {
-  std::optional<cv::Mat> image;  // decoded here
-  std::string damage;            // or why its image data is corrupt
+// A PNG decoded here, or why its image data is corrupt; neither where the
+// decoder leaves the file to another.
+struct DecodedPng {
+  std::optional<cv::Mat> image;
+  std::string damage;
 };
 
 // The image cv::imdecode(png, flags) gives, pixel for pixel, for flags
@@ -25,8 +28,8 @@ struct PlainPng {
 // data does not inflate, a row's filter type is not PNG's; libpng would
 // print its complaint on the terminal). Neither for any other layout or
 // flags, nor for data that inflates to more or fewer bytes than the rows
-// (OpenCV then decides). `png` is a whole file whose chunks' lengths and
+// (png_libpng.hpp then decides). `png` is a whole file whose chunks' lengths and
 // checksums the caller has checked.
-PlainPng decode_plain_png(std::string_view png, int flags);
+DecodedPng decode_plain_png(std::string_view png, int flags);
 
 }  // namespace touchcloud::io

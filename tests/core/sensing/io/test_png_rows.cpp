@@ -3,8 +3,8 @@
 // grey and RGB, one IDAT or many, the files OpenCV's writer makes at each
 // compression; and every layout it does not handle (16-bit, palette,
 // interlaced, transparency, gamma, a filter type PNG does not define, data
-// that inflates short or long) left to OpenCV, with read_image_file's
-// answer unchanged.
+// that inflates short or long) left to libpng (test_png_libpng), with
+// read_image_file's answer OpenCV's.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -169,7 +169,7 @@ TEST(PngRows, OpenCvsOwnFilesReadThroughImageFilesPixelForPixel) {
       }
 }
 
-TEST(PngRows, OtherLayoutsAreLeftToOpenCvWithTheSameAnswer) {
+TEST(PngRows, OtherLayoutsAreLeftToLibpngWithOpenCvsAnswer) {
   const cv::Mat colour = images(CV_8UC3)[1];
   struct Case {
     std::string what;
@@ -191,7 +191,7 @@ TEST(PngRows, OtherLayoutsAreLeftToOpenCvWithTheSameAnswer) {
   cases[6] = {"rows inflating long", {}};
   cases[6].layout.trim = -40;
   for (const auto& c : cases) {
-    const io::PlainPng decoded = io::decode_plain_png(build_png(colour, {4, 1}, c.layout), cv::IMREAD_UNCHANGED);
+    const io::DecodedPng decoded = io::decode_plain_png(build_png(colour, {4, 1}, c.layout), cv::IMREAD_UNCHANGED);
     EXPECT_FALSE(decoded.image) << c.what;
     EXPECT_EQ(decoded.damage, "") << c.what;
   }
@@ -202,7 +202,7 @@ TEST(PngRows, OtherLayoutsAreLeftToOpenCvWithTheSameAnswer) {
   ASSERT_TRUE(with_text);
   EXPECT_TRUE(same(*with_text, colour));
 
-  // Through read_image_file a layout left to OpenCV reads as OpenCV reads it.
+  // Through read_image_file a layout left to libpng reads as OpenCV reads it.
   test::TempDir dir;
   const auto file = dir.path() / "gamma.png";
   const auto write = [](const std::filesystem::path& to, const std::string& png) {

@@ -13,11 +13,14 @@ namespace touchcloud {
 // a damaged file from passing as an image or a decoder's complaint from
 // reaching the terminal: a JPEG must decode without a single libjpeg
 // warning (a file cut short would have its missing part filled with
-// grey), a PNG's chunks must be whole with valid checksums up to IEND, a
-// BMP must hold the pixel rows its header declares, and a TIFF of
-// floating-point samples is refused where an 8-bit image is asked for.
+// grey), a PNG's chunks must be whole with valid checksums up to IEND and
+// libpng must decode it without an error (its warnings are dropped, never
+// printed), a BMP must hold the pixel rows its header declares, and a TIFF
+// of floating-point samples is refused where an 8-bit image is asked for.
 // InputError otherwise, and when the file is missing, not a regular file,
-// or no image format OpenCV knows: "NAME cannot be read: why", where
+// or in none of the formats read (PNG, JPEG, TIFF, BMP, PNM, WebP: the
+// other decoders OpenCV brings print on the terminal, and no tactile
+// camera writes their formats): "NAME cannot be read: why", where
 // `name` says which file (default: "the image FILE").
 cv::Mat read_image_file(const std::filesystem::path& file, int flags, const std::string& name = {});
 

@@ -94,3 +94,13 @@ TEST(FuzzRegressions, PngTooLargeForOpenCvThatThrew) {
         << msg;
   }
 }
+
+// Five bytes, "RIFF" and one more: the check for WebP's signature read past
+// the end (std::out_of_range past read_image_file).
+TEST(FuzzRegressions, ShortRiffThatThrewOutOfRange) {
+  const fs::path file = kCorpus / "fuzz_png/crash-short-riff.png";
+  const std::string msg = input_error(file, [](const fs::path& f) { read_image_file(f, cv::IMREAD_COLOR); });
+  EXPECT_NE(msg.find("the image " + file.string() + " cannot be read: in no image format touchcloud reads"),
+            std::string::npos)
+      << msg;
+}

@@ -177,7 +177,7 @@ std::string bmp_problem(std::string_view b) {
 // log, OpenEXR) and no tactile camera writes them.
 std::string unread_format(std::string_view b) {
   if (b.size() >= 2 && b[0] == 'P' && b[1] >= '1' && b[1] <= '7') return "";  // PBM, PGM, PPM, PAM
-  if (b.substr(0, 4) == "RIFF" && b.substr(8, 4) == "WEBP") return "";
+  if (b.size() >= 12 && b.substr(0, 4) == "RIFF" && b.substr(8, 4) == "WEBP") return "";
   if (b.substr(0, 12) == std::string_view("\0\0\0\x0CjP  \r\n\x87\n", 12) || b.substr(0, 4) == "\xFF\x4F\xFF\x51")
     return "a JPEG 2000 file";
   if (b.substr(0, 4) == "\x76\x2F\x31\x01") return "an OpenEXR file";

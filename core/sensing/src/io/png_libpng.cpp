@@ -26,6 +26,7 @@ struct LibpngSession {
   const unsigned char* data = nullptr;
   std::size_t size = 0, at = 0;
   char error[256] = "";
+  char image_data_warning[256] = "";  // the first about IDAT
 
   ~LibpngSession() {
     if (png) png_destroy_read_struct(&png, info ? &info : nullptr, end ? &end : nullptr);
@@ -38,9 +39,14 @@ struct LibpngSession {
   png_longjmp(png, 1);
 }
 
-// A colour profile libpng distrusts, data after the last row: no pixel
-// changes, and OpenCV returns the image too.
-void warned(png_structp, png_const_charp) {}
+// A colour profile libpng distrusts changes no pixel: dropped. A warning
+// about the image data ("IDAT: incorrect data check") is damage, as the
+// common layout's decoder finds it (OpenCV would return the image).
+void warned(png_structp png, png_const_charp message) {
+  auto* session = static_cast<LibpngSession*>(png_get_error_ptr(png));
+  if (std::strncmp(message, "IDAT", 4) == 0 && session->image_data_warning[0] == '\0')
+    std::strncpy(session->image_data_warning, message, sizeof session->image_data_warning - 1);
+}
 
 void read_bytes(png_structp png, png_bytep out, png_size_t length) {
   auto* session = static_cast<LibpngSession*>(png_get_io_ptr(png));
@@ -148,6 +154,8 @@ DecodedPng decode_png_with_libpng(std::string_view file, int flags) {
         png_read_end(session.png, session.end);
       }))
     return damaged();
+  if (session.image_data_warning[0] != '\0')
+    return {std::nullopt, std::string("libpng says \"") + session.image_data_warning + "\" (corrupt)"};
   return {std::move(image), {}};
 }
 

@@ -244,6 +244,38 @@ TEST(PngLibpng, DamagedImageDataIsRefusedWithLibpngsReasonAndNothingPrinted) {
   }
 }
 
+// A zlib check that fails where libpng only warns (the checksum in an IDAT
+// of its own, after the last row): OpenCV prints the warning and returns
+// the image; read_image_file refuses it as the common layout's decoder
+// does, printing nothing.
+TEST(PngLibpng, AWarningAboutTheImageDataIsDamage) {
+  test::TempDir dir;
+  const auto file = dir.path() / "check.png";
+  Layout palette;
+  palette.colour_type = PNG_COLOR_TYPE_PALETTE;
+  std::string png = write_png(palette);
+  for (std::size_t at = 8; at + 12 <= png.size(); at += 12 + u32(png, at)) {
+    if (png.compare(at + 4, 4, "IDAT") != 0) continue;
+    const std::string data = png.substr(at + 8, u32(png, at));
+    std::string check = data.substr(data.size() - 4);
+    check[3] = static_cast<char>(check[3] ^ 0x5A);
+    png.replace(at, 12 + data.size(), chunk("IDAT", data.substr(0, data.size() - 4)) + chunk("IDAT", check));
+    break;
+  }
+  write_file(file, png);
+  testing::internal::CaptureStderr();
+  const cv::Mat theirs = opencv_decode(png, cv::IMREAD_COLOR);
+  const std::string printed_by_opencv = testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(theirs.empty());
+  EXPECT_NE(printed_by_opencv.find("libpng warning: IDAT: incorrect data check"), std::string::npos) << printed_by_opencv;
+  testing::internal::CaptureStderr();
+  const std::string error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); });
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_NE(error.find("cannot be read: not a whole PNG: libpng says \"IDAT: incorrect data check\" (corrupt)"),
+            std::string::npos)
+      << error;
+}
+
 // A header whose rows could not fit in its data is refused before the
 // image is allocated, in the layouts libpng decodes too.
 TEST(PngLibpng, DataTooSmallForTheDeclaredRowsIsRefusedBeforeAllocating) {

@@ -104,3 +104,15 @@ TEST(FuzzRegressions, ShortRiffThatThrewOutOfRange) {
             std::string::npos)
       << msg;
 }
+
+// A PNG with an EXIF chunk (left to OpenCV, which may turn the image) whose
+// header declares 393,216 x 2,048 pixels in 95 bytes of data: OpenCV
+// allocated 2.4 GB before finding the data short. Its size is now checked
+// first.
+TEST(FuzzRegressions, PngWithExifAndAHugeHeaderThatAllocated) {
+  const fs::path file = kCorpus / "fuzz_png/oom-exif-huge-header.png";
+  const std::string msg = input_error(file, [](const fs::path& f) { read_image_file(f, cv::IMREAD_COLOR); });
+  EXPECT_NE(msg.find("cannot be read: not a whole PNG: its image data (95 bytes) cannot hold the 393216 x 2048 pixels"),
+            std::string::npos)
+      << msg;
+}

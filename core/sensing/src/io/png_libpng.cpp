@@ -72,11 +72,12 @@ DecodedPng decode_png_with_libpng(std::string_view file, int flags) {
   if (flags != cv::IMREAD_UNCHANGED && (flags & ~kKnown) != 0) return {};
   if (file.size() < 8 + 12 + 13 || file.substr(12, 4) != "IHDR") return {};
   std::size_t image_data = 0;
+  bool exif = false;
   for (std::size_t at = 8; file.size() - at >= 12;) {
     const std::size_t length = chunk_u32(bytes + at);
     if (length > file.size() - at - 12) break;
     const std::string_view type = file.substr(at + 4, 4);
-    if (type == "eXIf" && flags != cv::IMREAD_UNCHANGED && !(flags & cv::IMREAD_IGNORE_ORIENTATION)) return {};
+    exif = exif || type == "eXIf";
     if (type == "IDAT") image_data += length;
     at += 12 + length;
   }
@@ -93,6 +94,7 @@ DecodedPng decode_png_with_libpng(std::string_view file, int flags) {
   if (height * ((width * samples * depth + 7) / 8) / 1032 > image_data + 1)
     return {std::nullopt, "its image data (" + std::to_string(image_data) + " bytes) cannot hold the " +
                               std::to_string(width) + " x " + std::to_string(height) + " pixels it declares (truncated)"};
+  if (exif && flags != cv::IMREAD_UNCHANGED && !(flags & cv::IMREAD_IGNORE_ORIENTATION)) return {};
 
   LibpngSession session;
   session.data = bytes;

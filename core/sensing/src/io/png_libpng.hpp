@@ -17,7 +17,8 @@ namespace touchcloud::io {
 // error, or a size OpenCV refuses. Neither for flags other than
 // IMREAD_UNCHANGED, IMREAD_GRAYSCALE and IMREAD_COLOR with IMREAD_ANYDEPTH
 // or IMREAD_ANYCOLOR, nor for a file with an EXIF chunk (OpenCV may turn the
-// image by its orientation): OpenCV then decodes. A warning about the image
+// image by its orientation): OpenCV then decodes, once the header's size
+// and the data's have been checked. A warning about the image
 // data is damage too; others (a colour profile libpng distrusts) are
 // dropped. `png` is a whole file whose chunks' lengths and checksums the
 // caller has checked.

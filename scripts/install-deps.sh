@@ -12,7 +12,7 @@ packages=(
   python3-open3d pcl-tools
   libopenmpi-dev openmpi-bin
   libfftw3-dev
-  libjpeg-dev libpng-dev zlib1g-dev libdeflate-dev
+  libjpeg-dev libpng-dev libavutil-dev zlib1g-dev libdeflate-dev
   libtorch-dev
   chromium
   libcpp-httplib-dev python3-opencv

@@ -149,7 +149,9 @@ TEST_F(StreamVerb, APipelineWithoutALoopOrAVideoCutShortIsRefused) {
   write_file(dir_ / "cut.yaml", gelsight_pipeline("video: cut.avi"));
   const CliResult cut = run_cli({"stream", (dir_ / "cut.yaml").string(), "--out", (dir_ / "c").string(), "-q"});
   EXPECT_EQ(cut.exit_code, 2);
-  EXPECT_NE(cut.err.find("cut.avi ends after"), std::string::npos) << cut.err;
+  // The cut falls inside a frame, which FFmpeg finds damaged.
+  EXPECT_NE(cut.err.find("cut.avi is damaged at or before its frame "), std::string::npos) << cut.err;
+  EXPECT_NE(cut.err.find("(corrupt or cut short): FFmpeg says '"), std::string::npos) << cut.err;
   EXPECT_FALSE(fs::exists(dir_ / "c" / "summary.json"));
 }
 
@@ -166,7 +168,9 @@ TEST_F(StreamVerb, ARecordingSurvivesTheSourceEndingMidStream) {
   write_file(dir_ / "cut.yaml", gelsight_pipeline("video: cut.avi, record: " + rec.string()));
   const CliResult cut = run_cli({"stream", (dir_ / "cut.yaml").string(), "--out", (dir_ / "c").string(), "-q"});
   EXPECT_EQ(cut.exit_code, 2);
-  EXPECT_NE(cut.err.find("cut.avi ends after"), std::string::npos) << cut.err;
+  // The cut falls inside a frame, which FFmpeg finds damaged.
+  EXPECT_NE(cut.err.find("cut.avi is damaged at or before its frame "), std::string::npos) << cut.err;
+  EXPECT_NE(cut.err.find("(corrupt or cut short): FFmpeg says '"), std::string::npos) << cut.err;
   const std::string index = read_file(rec / "index.csv");
   const long rows = std::count(index.begin(), index.end(), '\n') - 1;
   EXPECT_GE(rows, 3);

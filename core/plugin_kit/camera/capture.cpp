@@ -11,6 +11,7 @@
 
 #include "touchcloud/error.hpp"
 #include "touchcloud/io/image_file.hpp"
+#include "ffmpeg_messages.hpp"
 
 namespace fs = std::filesystem;
 
@@ -124,12 +125,19 @@ Capture::Capture(CaptureSettings settings) : settings_(std::move(settings)), kin
     case SourceKind::image_files:
       files_ = list_frame_files(source);
       return;
-    case SourceKind::video_file:
+    case SourceKind::video_file: {
       if (!fs::is_regular_file(source)) throw InputError("the video file " + source + " does not exist");
-      if (!video_.open(source, cv::CAP_FFMPEG, timeouts) || !video_.isOpened())
-        throw InputError("the video file " + source + " cannot be opened: not a video OpenCV's FFmpeg can decode");
+      catch_ffmpeg_messages();
+      caught_ffmpeg_messages();
+      const bool opened = video_.open(source, cv::CAP_FFMPEG, timeouts) && video_.isOpened();
+      const std::vector<std::string> said = caught_ffmpeg_messages();
+      if (!opened)
+        throw InputError("the video file " + source + " cannot be opened: not a video OpenCV's FFmpeg can decode" +
+                         (said.empty() ? "" : " (" + ffmpeg_says(said) + ")"));
+      if (!said.empty()) throw InputError("the video file " + source + " is damaged: " + ffmpeg_says(said));
       if (const double n = video_.get(cv::CAP_PROP_FRAME_COUNT); n > 0) frames_expected_ = static_cast<std::int64_t>(n);
       break;
+    }
     case SourceKind::gstreamer:
       if (!video_.open(source, cv::CAP_GSTREAMER) || !video_.isOpened())
         throw InputError("the GStreamer pipeline '" + source + "' cannot be opened (is OpenCV built with GStreamer?)");
@@ -202,7 +210,17 @@ std::optional<Shot> Capture::next() {
     return shot;
   }
   cv::Mat raw;
-  if (!video_.read(raw) || raw.empty()) {
+  const bool delivered = video_.read(raw) && !raw.empty();
+  // The decoder hides damage in the frame it returns, and says so only in
+  // its log: a damaged frame is an error, not a picture of concealment.
+  if (const std::vector<std::string> said = kind_ == SourceKind::video_file ? caught_ffmpeg_messages()
+                                                                           : std::vector<std::string>();
+      !said.empty())
+    throw InputError("the video file " + settings_.source + " is damaged at or before its frame " +
+                     std::to_string(read_) +
+                     (frames_expected_ > 0 ? " of " + std::to_string(frames_expected_) : std::string()) +
+                     " (corrupt or cut short): " + ffmpeg_says(said));
+  if (!delivered) {
     if (kind_ == SourceKind::video_file && frames_expected_ > 0 && read_ < frames_expected_)
       throw InputError("the video file " + settings_.source + " ends after " + std::to_string(read_) + " of its " +
                        std::to_string(frames_expected_) + " frames: it is cut short or damaged");

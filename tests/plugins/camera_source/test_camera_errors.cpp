@@ -1,6 +1,7 @@
 // camera_source refuses what it cannot deliver, at validation where it can
 // and always naming the source: a camera that does not exist or is not a
-// camera, a file that is not a video, a video cut short, frames of another
+// camera, a file that is not a video, a damaged video (FFmpeg's words in
+// the error, not on the terminal), a video cut short, frames of another
 // size, a crop that does not fit, and a source that stops delivering (a
 // bounded wait, never a hang).
 #include <fstream>
@@ -60,9 +61,45 @@ TEST_F(CameraErrors, AFileThatIsNotAVideoIsRefusedAtValidation) {
   EXPECT_NE(e.find("noise.mkv cannot be opened"), std::string::npos) << e;
 }
 
+// A video whose header or frames are damaged: an error quoting FFmpeg,
+// naming the file (and the frame), and nothing of FFmpeg's on the terminal,
+// where OpenCV's backend lets FFmpeg print ("moov atom not found",
+// "ac-tex damaged at 17 1") and returns the damaged frames concealed.
+TEST_F(CameraErrors, ADamagedVideoIsAnErrorQuotingFfmpegWhichPrintsNothing) {
+  std::vector<cv::Mat> frames = press_frames();
+  for (int copy = 0; copy < 3; ++copy) frames.insert(frames.end(), frames.begin(), frames.begin() + 6);
+  ASSERT_TRUE(write_video(dir_ / "whole.mp4", "mp4v", frames));
+  const std::string bytes = read_file(dir_ / "whole.mp4");
+  // The index (moov) follows the frames (mdat): the first half has none.
+  write_file(dir_ / "no_index.mp4", bytes.substr(0, bytes.size() / 2));
+  std::string damaged = bytes;
+  const std::size_t frames_at = damaged.find("mdat"), index_at = damaged.find("moov");
+  ASSERT_LT(frames_at, index_at);
+  for (std::size_t at = frames_at + (index_at - frames_at) / 3; at < frames_at + (index_at - frames_at) / 2; at += 13)
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x5A);
+  write_file(dir_ / "damaged_frames.mp4", damaged);
+
+  testing::internal::CaptureStderr();
+  const std::string no_index = load_error("video: no_index.mp4");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_NE(no_index.find("no_index.mp4 cannot be opened: not a video OpenCV's FFmpeg can decode (FFmpeg says '"),
+            std::string::npos)
+      << no_index;
+  EXPECT_NE(no_index.find("moov atom not found"), std::string::npos) << no_index;
+
+  testing::internal::CaptureStderr();
+  const std::string in_frames = run_error<InputError>("video: damaged_frames.mp4");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_NE(in_frames.find("damaged_frames.mp4 is damaged at or before its frame "), std::string::npos) << in_frames;
+  EXPECT_NE(in_frames.find(" of " + std::to_string(frames.size()) + " (corrupt or cut short): FFmpeg says '[mpeg4 @ "),
+            std::string::npos)
+      << in_frames;
+}
+
 // A recording cut short (a camera unplugged while it was written) ends the
 // run with an error naming the file and how far it got; the frames before
-// the cut were processed.
+// the cut were processed. The cut falls inside a frame, which FFmpeg finds
+// damaged.
 TEST_F(CameraErrors, AVideoCutShortIsAnErrorNamingTheFile) {
   std::vector<cv::Mat> frames = press_frames();
   for (int copy = 0; copy < 3; ++copy) frames.insert(frames.end(), frames.begin(), frames.begin() + 6);
@@ -70,8 +107,10 @@ TEST_F(CameraErrors, AVideoCutShortIsAnErrorNamingTheFile) {
   const std::string bytes = read_file(dir_ / "whole.avi");
   write_file(dir_ / "cut.avi", bytes.substr(0, bytes.size() / 2));
   const std::string e = run_error<InputError>("video: cut.avi");
-  EXPECT_NE(e.find("cut.avi ends after"), std::string::npos) << e;
-  EXPECT_NE(e.find("of its " + std::to_string(frames.size()) + " frames: it is cut short or damaged"), std::string::npos) << e;
+  EXPECT_NE(e.find("cut.avi is damaged at or before its frame "), std::string::npos) << e;
+  EXPECT_NE(e.find(" of " + std::to_string(frames.size()) + " (corrupt or cut short): FFmpeg says '[mjpeg @ "),
+            std::string::npos)
+      << e;
 }
 
 TEST_F(CameraErrors, FramesOfAnotherSizeAreRefusedNamingBoth) {

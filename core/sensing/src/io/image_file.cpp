@@ -6,7 +6,10 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <limits>
+#include <mutex>
+#include <sstream>
 #include <string>
 #include <string_view>
 
@@ -187,6 +190,40 @@ std::string unread_format(std::string_view b) {
   return "in no image format touchcloud reads";
 }
 
+// ---- OpenCV's own complaint: cv::imdecode prints a decoder's exception
+// on std::cerr ("imdecode_(''): can't read header: ...") and returns
+// nothing. Caught while it decodes (one decode at a time: std::cerr is the
+// process's), and whatever else was written meanwhile passed on.
+struct OpenCvDecode {
+  cv::Mat image;
+  std::string said;  // OpenCV's words, "" if none
+};
+
+OpenCvDecode decode_quietly(const cv::Mat& encoded, int flags) {
+  static std::mutex one_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_at_a_time);
+  std::ostringstream caught;
+  std::streambuf* const terminal = std::cerr.rdbuf(caught.rdbuf());
+  OpenCvDecode decoded;
+  try {
+    decoded.image = cv::imdecode(encoded, flags);
+  } catch (...) {
+    std::cerr.rdbuf(terminal);
+    throw;
+  }
+  std::cerr.rdbuf(terminal);
+  std::istringstream lines(caught.str());
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("imdecode_(", 0) == 0) {
+      const std::size_t why = line.find("): ");
+      decoded.said += (decoded.said.empty() ? "" : "; ") + (why == std::string::npos ? line : line.substr(why + 3));
+    } else if (!line.empty()) {
+      std::cerr << line << '\n';
+    }
+  }
+  return decoded;
+}
+
 }  // namespace
 
 cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name) {
@@ -214,9 +251,16 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
   const std::string_view b = bytes;
   const auto damaged = [&](const std::string& format, const std::string& why) { fail("not a whole " + format + ": " + why); };
   // OpenCV throws for a header it refuses (a size past its limits, say).
+  std::string opencv_said;
+  // A JPEG libjpeg has read without a word decodes without one: not
+  // serialised with the others.
+  const bool clean_jpeg = b.substr(0, 3) == "\xFF\xD8\xFF";
   const auto decode = [&](int decode_flags) {
     try {
-      return cv::imdecode(encoded, decode_flags);
+      if (clean_jpeg) return cv::imdecode(encoded, decode_flags);
+      OpenCvDecode decoded = decode_quietly(encoded, decode_flags);
+      opencv_said = std::move(decoded.said);
+      return decoded.image;
     } catch (const cv::Exception& e) {
       fail("OpenCV refuses it: " + e.err);
     }
@@ -253,7 +297,8 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
     fail(format + "; touchcloud reads PNG, JPEG, TIFF, BMP, PNM (PGM, PPM) and WebP images");
   }
   cv::Mat image = decode(flags);
-  if (image.empty()) fail("it does not decode (corrupt or truncated)");
+  if (image.empty())
+    fail("it does not decode (corrupt or truncated)" + (opencv_said.empty() ? "" : ": OpenCV says \"" + opencv_said + "\""));
   return image;
 }
 

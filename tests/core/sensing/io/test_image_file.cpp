@@ -1,5 +1,6 @@
-// The image formats read_image_file reads and those it refuses by name:
-// files written by OpenCV's own encoders in each.
+// The image formats read_image_file reads and those it refuses by name
+// (files written by OpenCV's own encoders in each), and OpenCV's own
+// complaint quoted rather than printed.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -70,3 +71,28 @@ TEST(ImageFile, OtherFormatsAreRefusedByNameSayingWhatIsRead) {
   const std::string error = test::input_error_of([&] { read_image_file(text, cv::IMREAD_COLOR); });
   EXPECT_NE(error.find("cannot be read: in no image format touchcloud reads"), std::string::npos) << error;
 }
+
+// A BMP whose compression field is none BMP defines: OpenCV's decoder
+// throws inside cv::imdecode, which prints the exception on std::cerr and
+// returns nothing. The refusal quotes it instead; nothing is printed.
+TEST(ImageFile, OpenCvsOwnComplaintIsQuotedNotPrinted) {
+  test::TempDir dir;
+  const auto file = dir.path() / "frame.bmp";
+  ASSERT_TRUE(cv::imwrite(file.string(), noise()));
+  std::string bmp = test::read_file(file);
+  bmp[30] = 9;  // biCompression
+  test::write_file(file, bmp);
+  testing::internal::CaptureStderr();
+  const cv::Mat theirs = cv::imread(file.string(), cv::IMREAD_COLOR);
+  const std::string printed_by_opencv = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(theirs.empty());
+  ASSERT_NE(printed_by_opencv.find("can't read header"), std::string::npos) << printed_by_opencv;
+  testing::internal::CaptureStderr();
+  const std::string error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); });
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_NE(error.find(file.string() + " cannot be read: it does not decode (corrupt or truncated): OpenCV says \"can't "
+                                       "read header: "),
+            std::string::npos)
+      << error;
+}
+

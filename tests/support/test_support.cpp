@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include <gtest/gtest.h>
+
 #include "touchcloud/error.hpp"
 
 #include <sys/wait.h>
@@ -49,6 +51,12 @@ std::string input_error_of(const std::function<void()>& read) {
     return e.what();
   }
   return "(no InputError)";
+}
+
+std::string printed_on_stderr(const std::function<void()>& run) {
+  testing::internal::CaptureStderr();
+  run();
+  return testing::internal::GetCapturedStderr();
 }
 
 PluginRegistry test_registry() {

@@ -35,6 +35,9 @@ std::string read_file(const std::filesystem::path& file);
 // The message of the InputError `read` throws, or "(no InputError)".
 std::string input_error_of(const std::function<void()>& read);
 
+// What `run` printed on stderr (file descriptor 2, as a library prints).
+std::string printed_on_stderr(const std::function<void()>& run);
+
 // The default search path plus the folder of test-only plugins.
 PluginRegistry test_registry();
 

@@ -27,6 +27,13 @@ class CameraErrors : public PipelineFixture {
     if (d.size() != 1) return "expected one diagnostic, got " + std::to_string(d.size());
     return d[0].message;
   }
+  // The press frames with their first six three times more: a recording
+  // long enough to damage in its middle.
+  static std::vector<cv::Mat> longer_presses() {
+    std::vector<cv::Mat> frames = press_frames();
+    for (int copy = 0; copy < 3; ++copy) frames.insert(frames.end(), frames.begin(), frames.begin() + 6);
+    return frames;
+  }
   // What running it throws.
   template <class Error>
   std::string run_error(const std::string& params) {
@@ -66,8 +73,7 @@ TEST_F(CameraErrors, AFileThatIsNotAVideoIsRefusedAtValidation) {
 // where OpenCV's backend lets FFmpeg print ("moov atom not found",
 // "ac-tex damaged at 17 1") and returns the damaged frames concealed.
 TEST_F(CameraErrors, ADamagedVideoIsAnErrorQuotingFfmpegWhichPrintsNothing) {
-  std::vector<cv::Mat> frames = press_frames();
-  for (int copy = 0; copy < 3; ++copy) frames.insert(frames.end(), frames.begin(), frames.begin() + 6);
+  const std::vector<cv::Mat> frames = longer_presses();
   ASSERT_TRUE(write_video(dir_ / "whole.mp4", "mp4v", frames));
   const std::string bytes = read_file(dir_ / "whole.mp4");
   // The index (moov) follows the frames (mdat): the first half has none.
@@ -101,8 +107,7 @@ TEST_F(CameraErrors, ADamagedVideoIsAnErrorQuotingFfmpegWhichPrintsNothing) {
 // the cut were processed. The cut falls inside a frame, which FFmpeg finds
 // damaged.
 TEST_F(CameraErrors, AVideoCutShortIsAnErrorNamingTheFile) {
-  std::vector<cv::Mat> frames = press_frames();
-  for (int copy = 0; copy < 3; ++copy) frames.insert(frames.end(), frames.begin(), frames.begin() + 6);
+  const std::vector<cv::Mat> frames = longer_presses();
   ASSERT_TRUE(write_video(dir_ / "whole.avi", "MJPG", frames));
   const std::string bytes = read_file(dir_ / "whole.avi");
   write_file(dir_ / "cut.avi", bytes.substr(0, bytes.size() / 2));

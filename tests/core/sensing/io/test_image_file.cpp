@@ -49,18 +49,20 @@ TEST(ImageFile, PnmAndWebpReadAsOpenCvReadsThem) {
 TEST(ImageFile, OtherFormatsAreRefusedByNameSayingWhatIsRead) {
   test::TempDir dir;
   const std::vector<std::pair<std::string, std::string>> files = {{"frame.jp2", "a JPEG 2000 file"},
-                                                                   {"frame.hdr", "a Radiance HDR file"},
-                                                                   {"frame.ras", "a Sun raster file"},
-                                                                   {"frame.pfm", "a PFM file"}};
+                                                                  {"frame.hdr", "a Radiance HDR file"},
+                                                                  {"frame.ras", "a Sun raster file"},
+                                                                  {"frame.pfm", "a PFM file"}};
   for (const auto& [name, format] : files) {
     const auto file = dir.path() / name;
     cv::Mat image = noise();
     if (name == "frame.hdr" || name == "frame.pfm") image.convertTo(image, CV_32FC3, 1.0 / 255);
     ASSERT_TRUE(cv::imwrite(file.string(), image)) << name;
     ASSERT_FALSE(cv::imread(file.string(), cv::IMREAD_UNCHANGED).empty()) << name << ": OpenCV reads it";
-    testing::internal::CaptureStderr();
-    const std::string error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_UNCHANGED); });
-    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << name;
+    std::string error;
+    EXPECT_EQ(test::printed_on_stderr(
+                  [&] { error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_UNCHANGED); }); }),
+              "")
+        << name;
     EXPECT_NE(error.find("the image " + file.string() + " cannot be read: " + format +
                          "; touchcloud reads PNG, JPEG, TIFF, BMP, PNM (PGM, PPM) and WebP images"),
               std::string::npos)
@@ -82,17 +84,18 @@ TEST(ImageFile, OpenCvsOwnComplaintIsQuotedNotPrinted) {
   std::string bmp = test::read_file(file);
   bmp[30] = 9;  // biCompression
   test::write_file(file, bmp);
-  testing::internal::CaptureStderr();
-  const cv::Mat theirs = cv::imread(file.string(), cv::IMREAD_COLOR);
-  const std::string printed_by_opencv = testing::internal::GetCapturedStderr();
+  cv::Mat theirs;
+  const std::string printed_by_opencv =
+      test::printed_on_stderr([&] { theirs = cv::imread(file.string(), cv::IMREAD_COLOR); });
   EXPECT_TRUE(theirs.empty());
   ASSERT_NE(printed_by_opencv.find("can't read header"), std::string::npos) << printed_by_opencv;
-  testing::internal::CaptureStderr();
-  const std::string error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); });
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
-  EXPECT_NE(error.find(file.string() + " cannot be read: it does not decode (corrupt or truncated): OpenCV says \"can't "
-                                       "read header: "),
-            std::string::npos)
+  std::string error;
+  EXPECT_EQ(
+      test::printed_on_stderr([&] { error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); }); }),
+      "");
+  EXPECT_NE(
+      error.find(file.string() + " cannot be read: it does not decode (corrupt or truncated): OpenCV says \"can't "
+                                 "read header: "),
+      std::string::npos)
       << error;
 }
-

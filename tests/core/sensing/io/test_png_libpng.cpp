@@ -64,8 +64,8 @@ std::string write_png(const Layout& layout) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
   png_set_write_fn(png, &out, append, nullptr);
-  png_set_IHDR(png, info, width, height, layout.depth, layout.colour_type, layout.interlace, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, width, height, layout.depth, layout.colour_type, layout.interlace,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   std::vector<png_color> palette(static_cast<std::size_t>(1) << layout.depth);
   std::vector<png_byte> alphas(palette.size());
   if (layout.colour_type == PNG_COLOR_TYPE_PALETTE) {
@@ -156,20 +156,25 @@ std::vector<Layout> every_layout() {
 TEST(PngLibpng, EveryLayoutReadsAsOpenCvReadsItWithEachFlagSet) {
   test::TempDir dir;
   const auto file = dir.path() / "layout.png";
-  const std::vector<int> flag_sets = {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR, cv::IMREAD_GRAYSCALE,
-                                      cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR, cv::IMREAD_ANYDEPTH,
-                                      cv::IMREAD_ANYCOLOR, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR};
+  const std::vector<int> flag_sets = {cv::IMREAD_UNCHANGED,
+                                      cv::IMREAD_COLOR,
+                                      cv::IMREAD_GRAYSCALE,
+                                      cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR,
+                                      cv::IMREAD_ANYDEPTH,
+                                      cv::IMREAD_ANYCOLOR,
+                                      cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR};
   for (const Layout& layout : every_layout()) {
     const std::string png = write_png(layout);
     write_file(file, png);
     for (int flags : flag_sets) {
       const cv::Mat theirs = opencv_decode(png, flags);
       ASSERT_FALSE(theirs.empty()) << describe(layout);
-      testing::internal::CaptureStderr();
-      const cv::Mat ours = read_image_file(file, flags);
-      EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << describe(layout) << ", flags " << flags;
+      cv::Mat ours;
+      EXPECT_EQ(test::printed_on_stderr([&] { ours = read_image_file(file, flags); }), "")
+          << describe(layout) << ", flags " << flags;
       EXPECT_TRUE(same(ours, theirs)) << describe(layout) << ", flags " << flags << ": "
-                                      << cv::typeToString(ours.type()) << " against " << cv::typeToString(theirs.type());
+                                      << cv::typeToString(ours.type()) << " against "
+                                      << cv::typeToString(theirs.type());
       const io::DecodedPng direct = io::decode_png_with_libpng(png, flags);
       ASSERT_TRUE(direct.image) << describe(layout) << ", flags " << flags << ": " << direct.damage;
       EXPECT_TRUE(same(*direct.image, theirs)) << describe(layout) << ", flags " << flags;
@@ -186,13 +191,11 @@ TEST(PngLibpng, AWarningAboutAColourProfileIsNotPrintedAndTheImageIsRead) {
   layout.bad_profile = true;
   const std::string png = write_png(layout);
   write_file(file, png);
-  testing::internal::CaptureStderr();
-  const cv::Mat theirs = opencv_decode(png, cv::IMREAD_COLOR);
-  const std::string printed_by_opencv = testing::internal::GetCapturedStderr();
+  cv::Mat theirs;
+  const std::string printed_by_opencv = test::printed_on_stderr([&] { theirs = opencv_decode(png, cv::IMREAD_COLOR); });
   ASSERT_NE(printed_by_opencv.find("libpng warning: iCCP"), std::string::npos) << printed_by_opencv;
-  testing::internal::CaptureStderr();
-  const cv::Mat ours = read_image_file(file, cv::IMREAD_COLOR);
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  cv::Mat ours;
+  EXPECT_EQ(test::printed_on_stderr([&] { ours = read_image_file(file, cv::IMREAD_COLOR); }), "");
   EXPECT_TRUE(same(ours, theirs));
 }
 
@@ -225,20 +228,23 @@ TEST(PngLibpng, DamagedImageDataIsRefusedWithLibpngsReasonAndNothingPrinted) {
                        }),
        "palette, rows short"},
       // The zlib stream's Adler-32 (its last 4 bytes) broken.
-      {with_image_data(write_png(sixteen), [](std::string& data) { data.back() = static_cast<char>(data.back() ^ 0x5A); }),
+      {with_image_data(write_png(sixteen),
+                       [](std::string& data) { data.back() = static_cast<char>(data.back() ^ 0x5A); }),
        "16-bit, zlib check"},
       {with_image_data(write_png(interlaced), [](std::string& data) { data.resize(data.size() / 2); }),
        "interlaced, data cut in half"}};
   for (const auto& [png, what] : files) {
     write_file(file, png);
-    testing::internal::CaptureStderr();
-    const cv::Mat theirs = opencv_decode(png, cv::IMREAD_COLOR);
-    const std::string printed_by_opencv = testing::internal::GetCapturedStderr();
+    cv::Mat theirs;
+    const std::string printed_by_opencv =
+        test::printed_on_stderr([&] { theirs = opencv_decode(png, cv::IMREAD_COLOR); });
     EXPECT_TRUE(theirs.empty()) << what;
     EXPECT_NE(printed_by_opencv.find("libpng error"), std::string::npos) << what << ": " << printed_by_opencv;
-    testing::internal::CaptureStderr();
-    const std::string error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); });
-    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << what;
+    std::string error;
+    EXPECT_EQ(test::printed_on_stderr(
+                  [&] { error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); }); }),
+              "")
+        << what;
     EXPECT_NE(error.find(file.string() + " cannot be read: not a whole PNG: libpng says \""), std::string::npos)
         << what << ": " << error;
   }
@@ -263,14 +269,15 @@ TEST(PngLibpng, AWarningAboutTheImageDataIsDamage) {
     break;
   }
   write_file(file, png);
-  testing::internal::CaptureStderr();
-  const cv::Mat theirs = opencv_decode(png, cv::IMREAD_COLOR);
-  const std::string printed_by_opencv = testing::internal::GetCapturedStderr();
+  cv::Mat theirs;
+  const std::string printed_by_opencv = test::printed_on_stderr([&] { theirs = opencv_decode(png, cv::IMREAD_COLOR); });
   EXPECT_FALSE(theirs.empty());
-  EXPECT_NE(printed_by_opencv.find("libpng warning: IDAT: incorrect data check"), std::string::npos) << printed_by_opencv;
-  testing::internal::CaptureStderr();
-  const std::string error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); });
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_NE(printed_by_opencv.find("libpng warning: IDAT: incorrect data check"), std::string::npos)
+      << printed_by_opencv;
+  std::string error;
+  EXPECT_EQ(
+      test::printed_on_stderr([&] { error = test::input_error_of([&] { read_image_file(file, cv::IMREAD_COLOR); }); }),
+      "");
   EXPECT_NE(error.find("cannot be read: not a whole PNG: libpng says \"IDAT: incorrect data check\" (corrupt)"),
             std::string::npos)
       << error;

@@ -12,14 +12,15 @@ namespace touchcloud::camera {
 
 namespace {
 
-std::mutex& messages_mutex() {
-  static std::mutex m;
-  return m;
-}
+// What the callback caught; FFmpeg logs from its decoding threads too.
+struct Caught {
+  std::mutex mutex;
+  std::vector<std::string> messages;
+};
 
-std::vector<std::string>& messages() {
-  static std::vector<std::string> caught;
-  return caught;
+Caught& caught() {
+  static Caught c;
+  return c;
 }
 
 void catch_message(void* context, int level, const char* format, va_list arguments) {
@@ -29,8 +30,8 @@ void catch_message(void* context, int level, const char* format, va_list argumen
   av_log_format_line2(context, level, format, arguments, line, sizeof line, &print_prefix);
   std::string text(line);
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  const std::lock_guard<std::mutex> lock(messages_mutex());
-  if (!text.empty() && messages().size() < 8) messages().push_back(std::move(text));
+  const std::lock_guard<std::mutex> lock(caught().mutex);
+  if (!text.empty() && caught().messages.size() < 8) caught().messages.push_back(std::move(text));
 }
 
 // The catcher lives in the camera plugin that links this library; FFmpeg
@@ -60,10 +61,10 @@ void catch_ffmpeg_messages() {
 }
 
 std::vector<std::string> caught_ffmpeg_messages() {
-  const std::lock_guard<std::mutex> lock(messages_mutex());
-  std::vector<std::string> caught;
-  caught.swap(messages());
-  return caught;
+  const std::lock_guard<std::mutex> lock(caught().mutex);
+  std::vector<std::string> taken;
+  taken.swap(caught().messages);
+  return taken;
 }
 
 std::string ffmpeg_says(const std::vector<std::string>& messages) {

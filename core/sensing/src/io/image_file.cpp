@@ -84,13 +84,6 @@ bool jpeg_decodes_cleanly(const std::string& bytes, char (&why)[JMSG_LENGTH_MAX]
   return clean;
 }
 
-std::uint32_t big_endian_u32(std::string_view b, std::size_t at) {
-  return static_cast<std::uint32_t>(static_cast<unsigned char>(b[at])) << 24 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 1])) << 16 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 2])) << 8 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 3]));
-}
-
 std::uint64_t little_endian(std::string_view b, std::size_t at, int bytes) {
   std::uint64_t v = 0;
   for (int i = bytes - 1; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
@@ -101,7 +94,7 @@ std::uint64_t little_endian(std::string_view b, std::size_t at, int bytes) {
 // print "libpng error: Read Error" on the terminal first), and the header
 // and chunk order libpng accepts (it prints its complaint otherwise).
 std::string png_header_problem(std::string_view ihdr) {
-  const std::uint64_t width = big_endian_u32(ihdr, 0), height = big_endian_u32(ihdr, 4);
+  const std::uint64_t width = io::png_u32(ihdr, 0), height = io::png_u32(ihdr, 4);
   const int depth = static_cast<unsigned char>(ihdr[8]), colour = static_cast<unsigned char>(ihdr[9]),
             compression = static_cast<unsigned char>(ihdr[10]), filter = static_cast<unsigned char>(ihdr[11]),
             interlace = static_cast<unsigned char>(ihdr[12]);
@@ -125,11 +118,11 @@ std::string png_problem(std::string_view b) {
   bool image_data = false;
   for (std::size_t at = 8;;) {
     if (b.size() - at < 12) return "the file ends before its IEND chunk (truncated)";
-    const std::uint64_t length = big_endian_u32(b, at);
+    const std::uint64_t length = io::png_u32(b, at);
     const std::string type(b.substr(at + 4, 4));
     const std::string where = "chunk '" + type + "' at byte " + std::to_string(at);
     if (length > b.size() - at - 12) return where + " runs past the end of the file (truncated)";
-    if (libdeflate_crc32(0, b.data() + at + 4, length + 4) != big_endian_u32(b, at + 8 + length))
+    if (libdeflate_crc32(0, b.data() + at + 4, length + 4) != io::png_u32(b, at + 8 + length))
       return where + " fails its checksum (corrupt)";
     if (!std::all_of(type.begin(), type.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }))
       return "the chunk at byte " + std::to_string(at) + " has no valid type (corrupt)";
@@ -250,11 +243,11 @@ cv::Mat read_image_file(const fs::path& file, int flags, const std::string& name
   const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U, bytes.data());
   const std::string_view b = bytes;
   const auto damaged = [&](const std::string& format, const std::string& why) { fail("not a whole " + format + ": " + why); };
-  // OpenCV throws for a header it refuses (a size past its limits, say).
   std::string opencv_said;
   // A JPEG libjpeg has read without a word decodes without one: not
   // serialised with the others.
   const bool clean_jpeg = b.substr(0, 3) == "\xFF\xD8\xFF";
+  // OpenCV throws for a header it refuses (a size past its limits, say).
   const auto decode = [&](int decode_flags) {
     try {
       if (clean_jpeg) return cv::imdecode(encoded, decode_flags);

@@ -14,11 +14,6 @@ namespace touchcloud::io {
 
 namespace {
 
-std::uint32_t chunk_u32(const unsigned char* p) {
-  return static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
-         static_cast<std::uint32_t>(p[2]) << 8 | static_cast<std::uint32_t>(p[3]);
-}
-
 // libpng's state with its error kept here; libpng reads from memory.
 struct LibpngSession {
   png_structp png = nullptr;
@@ -74,7 +69,7 @@ DecodedPng decode_png_with_libpng(std::string_view file, int flags) {
   std::size_t image_data = 0;
   bool exif = false;
   for (std::size_t at = 8; file.size() - at >= 12;) {
-    const std::size_t length = chunk_u32(bytes + at);
+    const std::size_t length = png_u32(file, at);
     if (length > file.size() - at - 12) break;
     const std::string_view type = file.substr(at + 4, 4);
     exif = exif || type == "eXIf";
@@ -82,7 +77,7 @@ DecodedPng decode_png_with_libpng(std::string_view file, int flags) {
     at += 12 + length;
   }
   const unsigned char* header = bytes + 16;
-  const std::uint64_t width = chunk_u32(header), height = chunk_u32(header + 4);
+  const std::uint64_t width = png_u32(file, 16), height = png_u32(file, 20);
   const int depth = header[8], colour_type = header[9];
   // OpenCV's limits on what it decodes.
   if (width > (1u << 20) || height > (1u << 20) || width * height > (1ull << 30))

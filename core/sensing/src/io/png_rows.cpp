@@ -15,11 +15,6 @@ namespace touchcloud::io {
 
 namespace {
 
-std::uint32_t big_endian_u32(const unsigned char* p) {
-  return static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
-         static_cast<std::uint32_t>(p[2]) << 8 | static_cast<std::uint32_t>(p[3]);
-}
-
 // Chunks that change no pixel as OpenCV decodes: text, time, physical size.
 bool informative(std::string_view type) {
   return type == "tEXt" || type == "zTXt" || type == "iTXt" || type == "tIME" || type == "pHYs";
@@ -69,10 +64,10 @@ struct Decompressor {
 
 DecodedPng decode_plain_png(std::string_view png, int flags) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(png.data());
-  if (png.size() < 8 + 12 + 13 || std::string_view(png.data() + 12, 4) != "IHDR" || big_endian_u32(bytes + 8) != 13)
+  if (png.size() < 8 + 12 + 13 || std::string_view(png.data() + 12, 4) != "IHDR" || png_u32(png, 8) != 13)
     return {};
   const unsigned char* header = bytes + 16;
-  const std::uint32_t width = big_endian_u32(header), height = big_endian_u32(header + 4);
+  const std::uint32_t width = png_u32(png, 16), height = png_u32(png, 20);
   const int depth = header[8], colour_type = header[9];
   // 8 bits, grey (0) or RGB (2), deflate, adaptive filters, not interlaced;
   // sizes within OpenCV's own limits.
@@ -93,7 +88,7 @@ DecodedPng decode_plain_png(std::string_view png, int flags) {
   bool ended = false;
   for (std::size_t at = 8 + 12 + 13; !ended;) {
     if (png.size() - at < 12) return {};
-    const std::size_t length = big_endian_u32(bytes + at);
+    const std::size_t length = png_u32(png, at);
     if (length > png.size() - at - 12) return {};
     const std::string_view type(png.data() + at + 4, 4);
     if (type == "IDAT") compressed.insert(compressed.end(), bytes + at + 8, bytes + at + 8 + length);

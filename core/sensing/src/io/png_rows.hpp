@@ -7,6 +7,7 @@
 // (png_libpng.hpp).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +15,14 @@
 #include <opencv2/core.hpp>
 
 namespace touchcloud::io {
+
+// A PNG's numbers (chunk lengths, checksums, the header's sizes) are
+// 4-byte big-endian: the one at byte `at`, which the caller has checked is
+// within `png`.
+inline std::uint32_t png_u32(std::string_view png, std::size_t at) {
+  const auto byte = [&](std::size_t i) { return static_cast<std::uint32_t>(static_cast<unsigned char>(png[at + i])); };
+  return byte(0) << 24 | byte(1) << 16 | byte(2) << 8 | byte(3);
+}
 
 // A PNG decoded here, or why its image data is corrupt; neither where the
 // decoder leaves the file to another.

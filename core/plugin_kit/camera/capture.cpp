@@ -129,12 +129,14 @@ Capture::Capture(CaptureSettings settings) : settings_(std::move(settings)), kin
       if (!fs::is_regular_file(source)) throw InputError("the video file " + source + " does not exist");
       catch_ffmpeg_messages();
       caught_ffmpeg_messages();
+      reading_ = reading_video(source);
       const bool opened = video_.open(source, cv::CAP_FFMPEG, timeouts) && video_.isOpened();
       const std::vector<std::string> said = caught_ffmpeg_messages();
       if (!opened)
         throw InputError("the video file " + source + " cannot be opened: not a video OpenCV's FFmpeg can decode" +
-                         (said.empty() ? "" : " (" + ffmpeg_says(said) + ")"));
-      if (!said.empty()) throw InputError("the video file " + source + " is damaged: " + ffmpeg_says(said));
+                         (said.empty() ? "" : " (" + ffmpeg_says(said, videos_read_besides(reading_)) + ")"));
+      if (!said.empty())
+        throw InputError("the video file " + source + " is damaged: " + ffmpeg_says(said, videos_read_besides(reading_)));
       if (const double n = video_.get(cv::CAP_PROP_FRAME_COUNT); n > 0) frames_expected_ = static_cast<std::int64_t>(n);
       break;
     }
@@ -219,12 +221,15 @@ std::optional<Shot> Capture::next() {
     throw InputError("the video file " + settings_.source + " is damaged at or before its frame " +
                      std::to_string(read_) +
                      (frames_expected_ > 0 ? " of " + std::to_string(frames_expected_) : std::string()) +
-                     " (corrupt or cut short): " + ffmpeg_says(said));
+                     " (corrupt or cut short): " + ffmpeg_says(said, videos_read_besides(reading_)));
   if (!delivered) {
     if (kind_ == SourceKind::video_file && frames_expected_ > 0 && read_ < frames_expected_)
       throw InputError("the video file " + settings_.source + " ends after " + std::to_string(read_) + " of its " +
                        std::to_string(frames_expected_) + " frames: it is cut short or damaged");
-    if (kind_ == SourceKind::video_file) return std::nullopt;
+    if (kind_ == SourceKind::video_file) {
+      reading_.reset();
+      return std::nullopt;
+    }
     throw RunError("the " + std::string(describe(kind_)) + " " + settings_.source + " stopped delivering frames after " +
                    std::to_string(read_) + " (unplugged, or no frame within " +
                    std::to_string(static_cast<int>(settings_.open_timeout_s)) + " s)");

@@ -2,6 +2,7 @@
 
 #include <cstdarg>
 #include <cstdlib>
+#include <algorithm>
 #include <mutex>
 
 extern "C" {
@@ -49,6 +50,16 @@ Catcher& catcher() {
   return c;
 }
 
+struct Reading {
+  std::mutex mutex;
+  std::vector<const std::string*> files;
+};
+
+Reading& reading() {
+  static Reading r;
+  return r;
+}
+
 }  // namespace
 
 void catch_ffmpeg_messages() {
@@ -67,10 +78,39 @@ std::vector<std::string> caught_ffmpeg_messages() {
   return taken;
 }
 
-std::string ffmpeg_says(const std::vector<std::string>& messages) {
+std::shared_ptr<const std::string> reading_video(const std::string& file) {
+  auto* registered = new std::string(file);
+  {
+    const std::lock_guard<std::mutex> lock(reading().mutex);
+    reading().files.push_back(registered);
+  }
+  return std::shared_ptr<const std::string>(registered, [](const std::string* f) {
+    {
+      const std::lock_guard<std::mutex> lock(reading().mutex);
+      auto& files = reading().files;
+      files.erase(std::remove(files.begin(), files.end(), f), files.end());
+    }
+    delete f;
+  });
+}
+
+std::vector<std::string> videos_read_besides(const std::shared_ptr<const std::string>& self) {
+  const std::lock_guard<std::mutex> lock(reading().mutex);
+  std::vector<std::string> others;
+  for (const std::string* f : reading().files)
+    if (f != self.get()) others.push_back(*f);
+  return others;
+}
+
+std::string ffmpeg_says(const std::vector<std::string>& messages, const std::vector<std::string>& besides) {
   std::string says = "FFmpeg says";
   for (std::size_t i = 0; i < messages.size(); ++i) says += (i ? "; '" : " '") + messages[i] + "'";
-  return says;
+  if (besides.empty()) return says;
+  says += " (FFmpeg's log is one for the process, and it was reading ";
+  for (std::size_t i = 0; i < besides.size(); ++i)
+    says += (i == 0 ? "" : i + 1 == besides.size() ? " and " : ", ") + besides[i];
+  return says + " at the same time: the damage may be in " + (besides.size() == 1 ? "that file" : "one of those") +
+         " instead)";
 }
 
 }  // namespace touchcloud::camera

@@ -6,6 +6,7 @@
 // the file or the frame.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,11 +17,20 @@ namespace touchcloud::camera {
 void catch_ffmpeg_messages();
 
 // What FFmpeg said at error level since the last call, oldest first (the
-// first 8). FFmpeg decodes on threads of its own: a second video read at
-// the same time can see the other's messages.
+// first 8). FFmpeg decodes on threads of its own (frame threads, whose
+// contexts are private copies), so a message cannot be traced to its file:
+// a second video read at the same time can see the other's messages.
 std::vector<std::string> caught_ffmpeg_messages();
 
-// The messages as one quoted phrase: "FFmpeg says 'a'; 'b'".
-std::string ffmpeg_says(const std::vector<std::string>& messages);
+// A video file registered as being read while the token lives, so that a
+// caught message names every file it may concern.
+std::shared_ptr<const std::string> reading_video(const std::string& file);
+
+// The files registered, other than `self`'s, in the order they were.
+std::vector<std::string> videos_read_besides(const std::shared_ptr<const std::string>& self);
+
+// The messages as one quoted phrase: "FFmpeg says 'a'; 'b'", and the
+// other files read at the time, when there are any.
+std::string ffmpeg_says(const std::vector<std::string>& messages, const std::vector<std::string>& besides = {});
 
 }  // namespace touchcloud::camera

@@ -107,6 +107,7 @@ class Capture {
   std::optional<double> first_ms_;     // a device's first timestamp
   double last_ms_ = 0;
   double frame_ms_ = 0;                // a device's frame period, for gaps
+  std::shared_ptr<const std::string> reading_;  // a video file, registered: FFmpeg's log is shared
 };
 
 }  // namespace touchcloud::camera

@@ -8,6 +8,7 @@
 // masked in the calibration (`calibrate.markers=mask`) and in the
 // reconstructions.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -16,6 +17,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/ml.hpp>
+#include <unordered_map>
 
 #include "test_support.hpp"
 #include "touchcloud/imaging/ball_press.hpp"
@@ -410,6 +413,46 @@ class LookupTable {
   std::vector<Eigen::Vector2d> gradient_;
 };
 
+// A small network from colour difference to gradient (OpenCV's multilayer
+// perceptron: 3 inputs, two hidden layers of `hidden` symmetric sigmoids,
+// 2 outputs, trained by RPROP from a seeded start), as learned calibrations
+// map colour to gradient; fitted to the same samples. Only to compare with
+// the polynomial. A pixel's difference is looked up once per image.
+class SmallNetwork {
+ public:
+  SmallNetwork(const std::vector<Eigen::Vector3d>& difference, const std::vector<Eigen::Vector2d>& gradient, int hidden)
+      : net_(cv::ml::ANN_MLP::create()) {
+    constexpr int kSamples = 4000, kIterations = 1000;
+    const int every = std::max<int>(1, static_cast<int>(difference.size()) / kSamples);  // every k-th sample
+    cv::Mat in(static_cast<int>(difference.size()) / every, 3, CV_32FC1), out(in.rows, 2, CV_32FC1);
+    for (int i = 0; i < in.rows; ++i) {
+      for (int c = 0; c < 3; ++c) in.at<float>(i, c) = static_cast<float>(difference[i * every][c]);
+      for (int c = 0; c < 2; ++c) out.at<float>(i, c) = static_cast<float>(gradient[i * every][c]);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    net_->setLayerSizes(std::vector<int>{3, hidden, hidden, 2});
+    net_->setActivationFunction(cv::ml::ANN_MLP::SIGMOID_SYM);
+    net_->setTrainMethod(cv::ml::ANN_MLP::RPROP);
+    net_->setTermCriteria(cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, kIterations, 1e-7));
+    cv::theRNG().state = 1;  // the weights' start
+    net_->train(cv::ml::TrainData::create(in, cv::ml::ROW_SAMPLE, out));
+    std::cout << "network 2 x " << hidden << ": " << in.rows << " of " << difference.size() << " samples, "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+  }
+  Eigen::Vector2d operator()(const Eigen::Vector3d& d) const {
+    const long key = ((static_cast<long>(d[0]) + 256) * 512 + static_cast<long>(d[1]) + 256) * 512 + static_cast<long>(d[2]) + 256;
+    if (auto known = seen_.find(key); known != seen_.end()) return known->second;
+    cv::Mat in = (cv::Mat_<float>(1, 3) << static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2]));
+    cv::Mat out;
+    net_->predict(in, out);
+    return seen_[key] = Eigen::Vector2d(out.at<float>(0, 0), out.at<float>(0, 1));
+  }
+
+ private:
+  cv::Ptr<cv::ml::ANN_MLP> net_;
+  mutable std::unordered_map<long, Eigen::Vector2d> seen_;
+};
+
 // The height photometric_depth integrates (flat pixels, the dots' fill,
 // zero border) with any mapping from colour difference to gradient.
 cv::Mat height_through(const std::function<Eigen::Vector2d(const Eigen::Vector3d&)>& mapping, const cv::Mat& image,
@@ -450,14 +493,16 @@ double contact_rmse_mm(const cv::Mat& height_mm, const cv::Mat& truth_mm) {
 
 }  // namespace
 
-// A lookup table fitted to the same samples as the polynomial, on the same
-// held-out presses: better on the 3 mm ball, no better on the 6 mm ball and
-// the letters, 2-3 times worse on the rod, whose rim is steeper than any
-// sample of the 4 mm ball's caps (inside 0.9 of the contact): the table
-// holds its outermost cube there, where the polynomial goes on. Its worst
-// held-out error is the larger with and without dots, so the polynomial
-// stays (the table in docs/sensors/gelsight.md is this test's output).
-TYPED_TEST(CalibrateFromBallPresses, ALookupTableIsNoBetterThanThePolynomial) {
+// A lookup table and a small network fitted to the same samples as the
+// polynomial, on the same held-out presses. The table is better on the
+// 3 mm ball, no better on the 6 mm ball and the letters, 2-3 times worse on
+// the rod, whose rim is steeper than any sample of the 4 mm ball's caps
+// (inside 0.9 of the contact): it holds its outermost cube there, where the
+// polynomial goes on. The networks are better on some presses and worse on
+// the 6 mm ball and the rod. The worst held-out error of each is the larger
+// with and without dots, so the polynomial stays (the table in
+// docs/sensors/gelsight.md is this test's output).
+TYPED_TEST(CalibrateFromBallPresses, NeitherALookupTableNorASmallNetworkIsBetterThanThePolynomial) {
   const cv::Mat& background = *TestFixture::background_;
   const fs::path out = TestFixture::dir_->path() / "out";
   const auto polynomial = sensor::load_photometric_calibration(out / "photometric_calibration.yaml");
@@ -480,11 +525,16 @@ TYPED_TEST(CalibrateFromBallPresses, ALookupTableIsNoBetterThanThePolynomial) {
   const std::vector<double> bins = {4.0, 8.0};
   std::vector<LookupTable> tables;
   for (double bin : bins) tables.emplace_back(difference, gradient, bin);
+  const std::vector<int> widths = {8, 16};
+  std::vector<SmallNetwork> networks;
+  for (int hidden : widths) networks.emplace_back(difference, gradient, hidden);
+  std::vector<double> worst_per_network(widths.size(), 0.0);
 
   double worst_polynomial = 0, worst_table = 1e9;
   std::vector<double> worst_per_table(bins.size(), 0.0);
   std::cout << "held-out press | polynomial";
   for (double bin : bins) std::cout << " | table, " << bin << " grey bins";
+  for (int hidden : widths) std::cout << " | network, 2 x " << hidden;
   std::cout << "\n";
   const auto compare = [&](std::shared_ptr<const simulation::ObjectSurface> object, const Eigen::Vector2d& place,
                            double travel, const std::string& name) {
@@ -502,6 +552,12 @@ TYPED_TEST(CalibrateFromBallPresses, ALookupTableIsNoBetterThanThePolynomial) {
       worst_per_table[t] = std::max(worst_per_table[t], rmse);
       std::cout << " | " << rmse;
     }
+    for (std::size_t n = 0; n < networks.size(); ++n) {
+      const double rmse = contact_rmse_mm(
+          height_through(networks[n], r.image, background, excluded, polynomial.mm_per_px), r.truth.height_mm);
+      worst_per_network[n] = std::max(worst_per_network[n], rmse);
+      std::cout << " | " << rmse;
+    }
     std::cout << "\n";
   };
   for (const auto& [name, place] : {std::pair{std::string("centre"), Eigen::Vector2d(0, 0)},
@@ -515,6 +571,10 @@ TYPED_TEST(CalibrateFromBallPresses, ALookupTableIsNoBetterThanThePolynomial) {
             "text_" + name);
   }
   for (double w : worst_per_table) worst_table = std::min(worst_table, w);
-  std::cout << "worst: polynomial " << worst_polynomial << " mm, best table " << worst_table << " mm\n";
+  const double worst_network = *std::min_element(worst_per_network.begin(), worst_per_network.end());
+  std::cout << "worst: polynomial " << worst_polynomial << " mm, best table " << worst_table << " mm, best network "
+            << worst_network << " mm\n";
   EXPECT_GT(worst_table, 1.3 * worst_polynomial);
+  // Measurably better would be a worst error 10 % below the polynomial's (measured: 19 % and 4 % above it).
+  EXPECT_GT(worst_network, 0.9 * worst_polynomial);
 }

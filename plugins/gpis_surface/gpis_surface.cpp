@@ -175,9 +175,12 @@ class GpisSurface final : public Stage {
     if (update.scale_floor > scale_floor_) {
       scale_floor_ = update.scale_floor;
       std::ostringstream text;
+      // The run's touch (the loop's iteration) where there is one: a touch
+      // that added no point reaches no model, so the model's count lags it.
+      const int touch_number = ctx.iteration() >= 0 ? ctx.iteration() + 1 : static_cast<int>(model->touches());
       text << "the thin-plate covariance was not positive definite with R near the touches' diameter (touches "
               "spread all round the object): R is kept at least " << scale_floor_ << " times their diameter from touch "
-           << model->touches() << " on";
+           << touch_number << " on";
       ctx.note("thin_plate_scale", text.str());
       ctx.log("warning: " + text.str());
     }

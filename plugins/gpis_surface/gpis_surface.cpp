@@ -175,9 +175,7 @@ class GpisSurface final : public Stage {
     if (update.scale_floor > scale_floor_) {
       scale_floor_ = update.scale_floor;
       std::ostringstream text;
-      // The run's touch (the loop's iteration) where there is one: a touch
-      // that added no point reaches no model, so the model's count lags it.
-      const int touch_number = ctx.iteration() >= 0 ? ctx.iteration() + 1 : static_cast<int>(model->touches());
+      const int touch_number = run_touch(ctx, model->touches());
       text << "the thin-plate covariance was not positive definite with R near the touches' diameter (touches "
               "spread all round the object): R is kept at least " << scale_floor_ << " times their diameter from touch "
            << touch_number << " on";
@@ -197,6 +195,13 @@ class GpisSurface final : public Stage {
     if (io.wants("implicit")) implicit_ = std::make_shared<HeldImplicitModel<Model>>(model);
   }
 
+  // The run's touch (the loop's iteration) where there is one, else the
+  // model's: a touch that added no point reaches no model, so the model's
+  // count lags the run's.
+  static int run_touch(const RunContext& ctx, std::size_t model_touch) {
+    return ctx.iteration() >= 0 ? ctx.iteration() + 1 : static_cast<int>(model_touch);
+  }
+
   // exact_then_sparse: while exact, keeps the touch; when it would take the
   // exact form beyond exact_max_points, fits the sparse form to every touch
   // before it, in their order, and goes on with that.
@@ -212,8 +217,9 @@ class GpisSurface final : public Stage {
     for (const gp::ImplicitTouch& t : touches_) sparse->add(t);
     touches_.clear();
     std::ostringstream text;
-    text << "exact form for touches 1-" << sparse->touches() << " (" << before << " training points); touch "
-         << sparse->touches() + 1 << " would pass exact_max_points (" << exact_max_points_
+    const int touch_number = run_touch(ctx, sparse->touches() + 1);
+    text << "exact form for touches 1-" << touch_number - 1 << " (" << before << " training points); touch "
+         << touch_number << " would pass exact_max_points (" << exact_max_points_
          << "), so from it on the sparse form (inducing sites " << sparse_.inducing_spacing_mm
          << " mm apart), fitted again to every touch";
     ctx.note("form", text.str());

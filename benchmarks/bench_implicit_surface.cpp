@@ -12,6 +12,11 @@
 //   BM_SparseGridMean/n/t     the sparse form's mean on a 32^3 grid, on t threads
 //   BM_SparseSurfaceVariance/n  its variance at 2,000 points on the sphere
 //                             (what a next-touch choice scores footprints by)
+//   BM_SparseTouchAndChoice/n the sparse form's touch update and then
+//                             side_touch's choice of the next touch on it
+//                             (touchcloud/planning/side_choice.hpp: 150
+//                             candidates of 20,000 points on the sphere,
+//                             each with its normal, variance and footprint)
 //   BM_LevelSetMesh/c         VTK flying edges on a c^3 grid of a sphere's
 //                             signed distance (VTK's SMP backend, TBB on
 //                             Debian, uses the cores the process may: run
@@ -26,6 +31,7 @@
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
 #include "touchcloud/gp/sparse_implicit_surface.hpp"
+#include "touchcloud/planning/side_choice.hpp"
 
 using namespace touchcloud;
 
@@ -114,6 +120,38 @@ void BM_SparseSurfaceVariance(benchmark::State& state) {
   state.counters["inducing_points"] = static_cast<double>(s.inducing_size());
 }
 BENCHMARK(BM_SparseSurfaceVariance)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// The model as side_touch reads it (gpis_surface's `implicit` output).
+class SparseModelView final : public ImplicitModel {
+ public:
+  explicit SparseModelView(const gp::SparseImplicitSurface& s) : s_(s) {}
+  Eigen::VectorXd mean(const Eigen::MatrixX3d& p) const override { return s_.mean(p); }
+  Eigen::VectorXd variance(const Eigen::MatrixX3d& p) const override { return s_.variance(p); }
+
+ private:
+  const gp::SparseImplicitSurface& s_;
+};
+
+void BM_SparseTouchAndChoice(benchmark::State& state) {
+  const auto base = model_of<gp::SparseImplicitSurface>(state.range(0), 400);
+  const gp::ImplicitTouch touch = sphere_touch(399, 400);
+  std::vector<Eigen::Vector3d> surface;  // the predicted surface's points, as gpis_surface samples them
+  for (int i = 0; i < 20000; ++i) surface.push_back(sphere_touch(i, 20000).points_mm.row(0).transpose());
+  std::size_t candidates = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::optional<gp::SparseImplicitSurface> s(base);
+    state.ResumeTiming();
+    s->add(touch);
+    candidates = planning::side_candidates(SparseModelView(*s), surface, {}, 1).size();
+    state.PauseTiming();
+    s.reset();
+    state.ResumeTiming();
+  }
+  state.counters["training_points"] = static_cast<double>(base.training_size());
+  state.counters["candidates"] = static_cast<double>(candidates);
+}
+BENCHMARK(BM_SparseTouchAndChoice)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 void BM_LevelSetMesh(benchmark::State& state) {
   const int cells = static_cast<int>(state.range(0));

@@ -4,7 +4,7 @@
 // from the vertical, evenly round it, each aimed at the centre of the scene's
 // object (or beside it where the centre cannot be reached). Then the
 // candidate contacts on the predicted surface, best first by the variance
-// their press would take (side_choice.hpp), the palm pressing against the
+// their press would take (touchcloud/planning/side_choice.hpp), the palm pressing against the
 // surface's normal. Every touch is checked against the scene's object before
 // it is made (reach_check.hpp: refuse_approach): one whose gel would meet the
 // table or the object on its way, or that the robot's tilt limit excludes, is
@@ -19,7 +19,7 @@
 #include <array>
 #include <sstream>
 
-#include "side_choice.hpp"
+#include "touchcloud/planning/side_choice.hpp"
 #include "touchcloud/plugin.hpp"
 #include "touchcloud/simulation/objects/reach_check.hpp"
 #include "touchcloud/simulation/scene/scene.hpp"

@@ -1,4 +1,4 @@
-#include "side_choice.hpp"
+#include "touchcloud/planning/side_choice.hpp"
 
 #include <algorithm>
 #include <cmath>

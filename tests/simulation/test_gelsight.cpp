@@ -67,6 +67,10 @@ TEST(GelSightScene, NamesTheFieldValueAndRuleOfEachProblem) {
             std::string::npos);
   EXPECT_NE(problem("", "[contact, {exposure_drift: {offset_grey: -300}}]").find("effects.exposure_drift.offset_grey"),
             std::string::npos);
+  // A marker field is unknown to exposure_drift (it once fell through into
+  // the markers' fields and set their pitch).
+  const std::string drift = problem("", "[contact, {exposure_drift: {gain: 1.01, pitch_mm: 3}}]");
+  EXPECT_NE(drift.find("effects.exposure_drift.pitch_mm"), std::string::npos) << drift;
   // A GelStereo field is unknown to the GelSight section.
   EXPECT_NE(problem("  gel: {diameter_mm: 65}\n").find("sensor.gel"), std::string::npos);
 }

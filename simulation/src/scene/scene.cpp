@@ -86,6 +86,7 @@ void read_effect(Effect effect, const YAML::Node& params, Scene& scene, ConfigPr
       p.exposure_gain = f.number("gain", p.exposure_gain, FieldRule::Positive);
       p.exposure_offset_grey = f.number("offset_grey", p.exposure_offset_grey);
       if (std::abs(p.exposure_offset_grey) > 255) f.error("offset_grey", "must be within -255 to 255");
+      break;
     case Effect::GelMarkers:
       p.gel_marker_pitch_mm = f.number("pitch_mm", p.gel_marker_pitch_mm, FieldRule::Positive);
       p.gel_marker_diameter_mm = f.number("diameter_mm", p.gel_marker_diameter_mm, FieldRule::Positive);

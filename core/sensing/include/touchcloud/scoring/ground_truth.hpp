@@ -53,7 +53,7 @@ struct GroundTruth {
   // Meshes scored whole, when asked (flag_seen_from_above): per indexed point,
   // in the index's order, whether a press from above sees it; empty otherwise
   // and when it sees every point (an open surface).
-  std::vector<bool> seen_from_above;
+  std::vector<bool> seen_from_above{};
 
   // Mean spacing of the samples on a mesh, sqrt(area / samples drawn); 0 for clouds.
   double sample_spacing_mm() const;

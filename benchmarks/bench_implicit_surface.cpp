@@ -28,6 +28,7 @@
 #include <optional>
 #include <type_traits>
 
+#include "touchcloud/gp/held_implicit_model.hpp"
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
 #include "touchcloud/gp/sparse_implicit_surface.hpp"
@@ -121,17 +122,6 @@ void BM_SparseSurfaceVariance(benchmark::State& state) {
 }
 BENCHMARK(BM_SparseSurfaceVariance)->Arg(10000)->Unit(benchmark::kMillisecond);
 
-// The model as side_touch reads it (gpis_surface's `implicit` output).
-class SparseModelView final : public ImplicitModel {
- public:
-  explicit SparseModelView(const gp::SparseImplicitSurface& s) : s_(s) {}
-  Eigen::VectorXd mean(const Eigen::MatrixX3d& p) const override { return s_.mean(p); }
-  Eigen::VectorXd variance(const Eigen::MatrixX3d& p) const override { return s_.variance(p); }
-
- private:
-  const gp::SparseImplicitSurface& s_;
-};
-
 void BM_SparseTouchAndChoice(benchmark::State& state) {
   const auto base = model_of<gp::SparseImplicitSurface>(state.range(0), 400);
   const gp::ImplicitTouch touch = sphere_touch(399, 400);
@@ -140,10 +130,12 @@ void BM_SparseTouchAndChoice(benchmark::State& state) {
   std::size_t candidates = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    std::optional<gp::SparseImplicitSurface> s(base);
+    auto s = std::make_shared<gp::SparseImplicitSurface>(base);
     state.ResumeTiming();
     s->add(touch);
-    candidates = planning::side_candidates(SparseModelView(*s), surface, {}, 1).size();
+    // The model as side_touch reads it (gpis_surface's `implicit` output).
+    const gp::HeldImplicitModel<gp::SparseImplicitSurface> held(s);
+    candidates = planning::side_candidates(held, surface, {}, 1).size();
     state.PauseTiming();
     s.reset();
     state.ResumeTiming();

@@ -30,6 +30,7 @@
 
 #include "top_surface.hpp"
 
+#include "touchcloud/gp/held_implicit_model.hpp"
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
 #include "touchcloud/gp/sparse_implicit_surface.hpp"
@@ -43,19 +44,6 @@
 namespace touchcloud {
 
 enum class ImplicitForm { exact, sparse, exact_then_sparse };
-
-// The model as the planner reads it; the stage copies the model before the
-// next touch while this is held.
-template <class Model>
-class HeldImplicitModel final : public ImplicitModel {
- public:
-  explicit HeldImplicitModel(std::shared_ptr<const Model> model) : model_(std::move(model)) {}
-  Eigen::VectorXd mean(const Eigen::MatrixX3d& points_mm) const override { return model_->mean(points_mm); }
-  Eigen::VectorXd variance(const Eigen::MatrixX3d& points_mm) const override { return model_->variance(points_mm); }
-
- private:
-  std::shared_ptr<const Model> model_;
-};
 
 class GpisSurface final : public Stage {
   gp::ImplicitSurfaceOptions options_;
@@ -192,7 +180,7 @@ class GpisSurface final : public Stage {
       const double top_z_mm = model->contact_points().col(2).maxCoeff() + margin_mm_;
       surface_ = std::make_shared<ImplicitTopSurface<Model>>(model, top_z_mm, 1.0);
     }
-    if (io.wants("implicit")) implicit_ = std::make_shared<HeldImplicitModel<Model>>(model);
+    if (io.wants("implicit")) implicit_ = std::make_shared<gp::HeldImplicitModel<Model>>(model);
   }
 
   // The run's touch (the loop's iteration) where there is one, else the

@@ -134,9 +134,9 @@ Capture::Capture(CaptureSettings settings) : settings_(std::move(settings)), kin
       const std::vector<std::string> said = caught_ffmpeg_messages();
       if (!opened)
         throw InputError("the video file " + source + " cannot be opened: not a video OpenCV's FFmpeg can decode" +
-                         (said.empty() ? "" : " (" + ffmpeg_says(said, videos_read_besides(reading_)) + ")"));
+                         (said.empty() ? "" : " (" + ffmpeg_says(said, reading_) + ")"));
       if (!said.empty())
-        throw InputError("the video file " + source + " is damaged: " + ffmpeg_says(said, videos_read_besides(reading_)));
+        throw InputError("the video file " + source + " is damaged: " + ffmpeg_says(said, reading_));
       if (const double n = video_.get(cv::CAP_PROP_FRAME_COUNT); n > 0) frames_expected_ = static_cast<std::int64_t>(n);
       break;
     }
@@ -221,7 +221,7 @@ std::optional<Shot> Capture::next() {
     throw InputError("the video file " + settings_.source + " is damaged at or before its frame " +
                      std::to_string(read_) +
                      (frames_expected_ > 0 ? " of " + std::to_string(frames_expected_) : std::string()) +
-                     " (corrupt or cut short): " + ffmpeg_says(said, videos_read_besides(reading_)));
+                     " (corrupt or cut short): " + ffmpeg_says(said, reading_));
   if (!delivered) {
     if (kind_ == SourceKind::video_file && frames_expected_ > 0 && read_ < frames_expected_)
       throw InputError("the video file " + settings_.source + " ends after " + std::to_string(read_) + " of its " +

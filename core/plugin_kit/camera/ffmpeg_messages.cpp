@@ -102,9 +102,10 @@ std::vector<std::string> videos_read_besides(const std::shared_ptr<const std::st
   return others;
 }
 
-std::string ffmpeg_says(const std::vector<std::string>& messages, const std::vector<std::string>& besides) {
+std::string ffmpeg_says(const std::vector<std::string>& messages, const std::shared_ptr<const std::string>& reading) {
   std::string says = "FFmpeg says";
   for (std::size_t i = 0; i < messages.size(); ++i) says += (i ? "; '" : " '") + messages[i] + "'";
+  const std::vector<std::string> besides = reading ? videos_read_besides(reading) : std::vector<std::string>();
   if (besides.empty()) return says;
   says += " (FFmpeg's log is one for the process, and it was reading ";
   for (std::size_t i = 0; i < besides.size(); ++i)

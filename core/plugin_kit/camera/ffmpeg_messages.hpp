@@ -29,8 +29,10 @@ std::shared_ptr<const std::string> reading_video(const std::string& file);
 // The files registered, other than `self`'s, in the order they were.
 std::vector<std::string> videos_read_besides(const std::shared_ptr<const std::string>& self);
 
-// The messages as one quoted phrase: "FFmpeg says 'a'; 'b'", and the
-// other files read at the time, when there are any.
-std::string ffmpeg_says(const std::vector<std::string>& messages, const std::vector<std::string>& besides = {});
+// The messages as one quoted phrase: "FFmpeg says 'a'; 'b'", and the files
+// read at the time besides `reading`'s (registered by reading_video), when
+// there are any.
+std::string ffmpeg_says(const std::vector<std::string>& messages,
+                        const std::shared_ptr<const std::string>& reading = nullptr);
 
 }  // namespace touchcloud::camera

@@ -41,7 +41,7 @@ TEST(FfmpegMessages, AMessageNamesTheOtherVideoFilesReadAtTheSameTime) {
     auto third = reading_video("third.mp4");
     EXPECT_EQ(videos_read_besides(left), (std::vector<std::string>{"right.mp4", "third.mp4"}));
     EXPECT_EQ(videos_read_besides(right), (std::vector<std::string>{"left.mp4", "third.mp4"}));
-    EXPECT_EQ(ffmpeg_says({"a"}, videos_read_besides(third)),
+    EXPECT_EQ(ffmpeg_says({"a"}, third),
               "FFmpeg says 'a' (FFmpeg's log is one for the process, and it was reading left.mp4 and right.mp4 at "
               "the same time: the damage may be in one of those instead)");
   }

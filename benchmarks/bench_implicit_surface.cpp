@@ -135,8 +135,8 @@ void BM_SparseTouchAndChoice(benchmark::State& state) {
     s->add(touch);
     // The model as side_touch reads it (gpis_surface's `implicit` output),
     // held without owning it: the model copied into std::make_shared
-    // instead made the same touch and choice 45.5 ms (against 33-36 ms), a
-    // difference of where the copy lies, not of the work timed here.
+    // instead made the same touch and choice 45.5 ms (against 33-36 ms) on
+    // the same work; why was not found.
     const gp::HeldImplicitModel<gp::SparseImplicitSurface> held(
         std::shared_ptr<const gp::SparseImplicitSurface>(&*s, [](const gp::SparseImplicitSurface*) {}));
     candidates = planning::side_candidates(held, surface, {}, 1).size();

@@ -134,11 +134,29 @@ class Runner {
     }
   }
 
-  void run_nodes(std::vector<ResolvedNode>& nodes) {
-    for (auto& n : nodes) {
-      if (n.stage) run_stage(*n.stage);
-      else run_loop(*n.loop);
+  void run_nodes(std::vector<ResolvedNode>& nodes) { run_nodes(nodes, 0, nodes.size()); }
+  void run_nodes(std::vector<ResolvedNode>& nodes, std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) {
+      if (nodes[i].stage) run_stage(*nodes[i].stage);
+      else run_loop(*nodes[i].loop);
     }
+  }
+
+  // Each output read from the loop's previous iteration (`stage.port@previous`),
+  // with the last node of the loop's body that reads it (a nested loop
+  // counts as one node).
+  static std::map<std::string, std::size_t> last_previous_readers(const ResolvedLoop& loop) {
+    std::map<std::string, std::size_t> last;
+    for (std::size_t n = 0; n < loop.body.size(); ++n) {
+      const ResolvedNode& node = loop.body[n];
+      std::vector<const ResolvedStage*> stages;
+      if (node.stage) stages.push_back(node.stage.get());
+      else stages.assign(node.loop->stages.begin(), node.loop->stages.end());
+      for (const ResolvedStage* s : stages)
+        for (const auto& in : s->inputs)
+          if (in.previous_of == &loop) last[in.key] = n;
+    }
+    return last;
   }
 
   int loop_depth_ = 0;  // of the loop running now: 1 for a top-level one
@@ -153,16 +171,22 @@ class Runner {
       if (!s->loops.empty() && s->loops.back() == &loop)
         for (const auto& port : after_loop_outputs(*s)) values_.erase(s->id + "." + port);
     const std::int64_t budget = this->budget(loop);
+    const std::map<std::string, std::size_t> last_reader = last_previous_readers(loop);
     for (std::int64_t i = 0; i < budget; ++i) {
       if (i > 0) {
         previous.clear();
-        for (auto* s : loop.stages)
-          for (const auto& out : s->ports->outputs())
-            if (auto it = values_.find(s->id + "." + out.name); it != values_.end()) previous[it->first] = it->second;
+        for (const auto& [key, node] : last_reader)
+          if (auto it = values_.find(key); it != values_.end()) previous[key] = it->second;
       }
       for (auto* s : loop.stages) s->iteration = static_cast<int>(i);
       ++loop_depth_;
-      run_nodes(loop.body);
+      for (std::size_t n = 0; n < loop.body.size(); ++n) {
+        run_nodes(loop.body, n, n + 1);
+        // Let go of what no later node of this iteration reads: a stage
+        // that updates a model in place then need not copy it.
+        for (const auto& [key, node] : last_reader)
+          if (node == n) previous.erase(key);
+      }
       --loop_depth_;
       ++loop.iterations_run;
       if (loop_depth_ == 0 && options_.on_loop_iteration)
@@ -208,7 +232,16 @@ class Runner {
       return;
     }
     s.context->set_iteration(s.iteration);
-    for (auto& [port, value] : process(s, inputs)) {
+    // The last call's outputs go first: Stage::process makes every output
+    // read in the loop be produced again (or fails), so no reader needs them,
+    // and a stage that updates a model it hands out (gpis_surface) then holds
+    // the only reference and need not copy it. Those read only after the
+    // loop stay: a call may skip them.
+    const std::set<std::string> after_loop = after_loop_outputs(s);
+    for (const auto& out : s.ports->outputs())
+      if (!after_loop.count(out.name)) values_.erase(s.id + "." + out.name);
+    Value::Outputs outputs = process(s, inputs);
+    for (auto& [port, value] : outputs) {
       Value& kept = values_[s.id + "." + port] = {std::move(value), {}, {}};
       keep_call(s.id + "." + port, kept);
     }

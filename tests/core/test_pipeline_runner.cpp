@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline_fixture.hpp"
+#include "touchcloud/types/point_cloud.hpp"
 
 using namespace touchcloud;
 namespace fs = std::filesystem;
@@ -124,6 +125,36 @@ TEST_F(PipelineRunner, NestedLoopsRestartTheirPreviousValues) {
       "              - id: f\n                plugin: test_counter\n"
       "                inputs: {previous: f.value@previous}\n");
   EXPECT_EQ(series(r, "f.value"), (std::vector<double>{1, 2, 3, 1, 2, 3}));
+}
+
+// `held` keeps its cloud behind its output and copies it when another holder
+// is left at its call; `reader` reads the previous iteration's, `last` the
+// final one.
+const std::string kHeldCloud =
+    "stages:\n  - id: explore\n    loop:\n      max_iterations: 5\n      stages:\n"
+    "        - id: reader\n          plugin: test_held_cloud\n          inputs: {cloud: held.cloud@previous}\n"
+    "        - id: held\n          plugin: test_held_cloud\n"
+    "  - id: last\n    plugin: test_held_cloud\n    inputs: {cloud: held.cloud}\n";
+
+TEST_F(PipelineRunner, AStageHoldsTheOnlyReferenceToItsLastOutputWhenItIsCalledAgain) {
+  const RunResult r = run(kHeldCloud);
+  EXPECT_EQ(series(r, "reader.points_read"), (std::vector<double>{1, 2, 3, 4}));
+  EXPECT_EQ(series(r, "last.points_read"), (std::vector<double>{5}));
+  EXPECT_EQ(series(r, "held.copies"), (std::vector<double>{0}));
+}
+
+TEST_F(PipelineRunner, AnOutputKeptFromEveryCallIsCopiedNotChangedUnderTheKeeper) {
+  Pipeline p = load(kHeldCloud);
+  RunOptions o;
+  o.quiet = true;
+  o.capture = {"held.cloud"};
+  o.capture_every_call = true;
+  const RunResult r = run_pipeline(p, o);
+  EXPECT_EQ(series(r, "held.copies"), (std::vector<double>{4}));
+  const auto& calls = r.captured_every_call.at("held.cloud");
+  ASSERT_EQ(calls.size(), 5u);
+  for (std::size_t i = 0; i < calls.size(); ++i)
+    EXPECT_EQ(std::any_cast<CloudConstPtr>(calls[i])->size(), i + 1);
 }
 
 TEST_F(PipelineRunner, StagesRunInDependencyOrderWhateverTheFileOrder) {

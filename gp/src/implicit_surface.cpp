@@ -267,16 +267,14 @@ void ImplicitSurface::require_touches() const {
 Eigen::VectorXd ImplicitSurface::mean(const Eigen::Ref<const Eigen::MatrixX3d>& q, int threads) const {
   require_touches();
   const ImplicitKernel kernel(options_.kernel, h_);
-  const Eigen::Matrix3Xd x = data_.x.topRows(data_.n).transpose();  // a point per column: contiguous
+  const auto x = data_.x.topRows(data_.n);
   Eigen::VectorXd out(q.rows());
-  // Each query on its own, in one order: the same values whatever the thread count.
+  // Each query's sum runs over the training points in one order, whatever
+  // the block: the same values for any thread count.
   for_each_block(static_cast<std::size_t>(q.rows()), resolve_threads(threads), 64, [&](std::size_t begin, std::size_t end) {
-    for (auto j = static_cast<Eigen::Index>(begin); j < static_cast<Eigen::Index>(end); ++j) {
-      const Eigen::Vector3d p = q.row(j).transpose();
-      double sum = prior(p);
-      for (Eigen::Index i = 0; i < data_.n; ++i) sum += alpha_[i] * kernel.covariance((x.col(i) - p).norm());
-      out[j] = sum;
-    }
+    const auto first = static_cast<Eigen::Index>(begin), count = static_cast<Eigen::Index>(end - begin);
+    out.segment(first, count) = kernel.weighted_sums(x, alpha_, q.middleRows(first, count));
+    for (Eigen::Index j = first; j < first + count; ++j) out[j] += prior(q.row(j).transpose());
   });
   return out;
 }

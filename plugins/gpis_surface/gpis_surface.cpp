@@ -146,8 +146,9 @@ class GpisSurface final : public Stage {
 
   template <class Model>
   void update_and_mesh(std::shared_ptr<Model>& model, const gp::ImplicitTouch& touch, StageIO& io, RunContext& ctx) {
-    // A model handed out as `surface` does not change: the next touch goes to
-    // a copy while another stage still holds it.
+    // A model handed out does not change: the next touch goes to a copy
+    // while another stage still holds it. The runner lets go of this stage's
+    // last outputs before the call, so only a reader that keeps them does.
     surface_.reset();
     implicit_.reset();
     if (model.use_count() > 1) model = std::make_shared<Model>(*model);

@@ -112,7 +112,8 @@ class SideTouch final : public Stage {
   // `first` keeps the first refusal of the touch being chosen.
   std::optional<simulation::ReachRefusal> refused(const Eigen::Isometry3d& frame, std::optional<double> intended_mm,
                                                   std::optional<simulation::ReachRefusal>& first) {
-    const simulation::ApproachView view(object_, frame.inverse());
+    // Only the gel's disc round the approach is read (a millimetre to spare).
+    const simulation::ApproachView view(object_, frame.inverse(), limits_.gel_radius_mm + 1.0);
     const auto why = simulation::refuse_approach(view, frame, {0, 0}, intended_mm, limits_);
     if (why) {
       ++refused_candidates_;

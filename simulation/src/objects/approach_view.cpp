@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "touchcloud/error.hpp"
+
 namespace touchcloud::simulation {
 
 namespace {
@@ -12,7 +14,11 @@ namespace {
 constexpr double kFacingCosine = 1e-6;
 }  // namespace
 
-ApproachView::ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::Isometry3d& press_from_object) {
+ApproachView::ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::Isometry3d& press_from_object)
+    : ApproachView(object_mm, press_from_object, std::numeric_limits<double>::infinity()) {}
+
+ApproachView::ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::Isometry3d& press_from_object,
+                           double within_mm) {
   scoring::TriangleMesh moved = object_mm;
   double lowest = std::numeric_limits<double>::infinity();
   for (auto& v : moved.vertices) {
@@ -21,7 +27,26 @@ ApproachView::ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::
   }
   lift_mm_ = 1.0 - lowest;
   for (auto& v : moved.vertices) v.z() += lift_mm_;
-  object_ = std::make_unique<MeshSurface>(moved);
+  if (std::isfinite(within_mm)) {
+    // A triangle that covers a point of the disc has its footprint's box
+    // there; one whose box stays farther is never read.
+    const auto near = [&](const std::array<std::uint32_t, 3>& t) {
+      Eigen::AlignedBox2d box(moved.vertices[t[0]].head<2>());
+      box.extend(moved.vertices[t[1]].head<2>());
+      box.extend(moved.vertices[t[2]].head<2>());
+      return box.squaredExteriorDistance(Eigen::Vector2d::Zero()) <= within_mm * within_mm;
+    };
+    moved.triangles.erase(std::remove_if(moved.triangles.begin(), moved.triangles.end(),
+                                         [&](const std::array<std::uint32_t, 3>& t) { return !near(t); }),
+                          moved.triangles.end());
+  }
+  if (!moved.triangles.empty()) {
+    try {
+      object_ = std::make_unique<MeshSurface>(moved);
+    } catch (const InputError&) {
+      // Near the axis only triangles edge-on to the press: nothing faces it.
+    }
+  }
   // z_object = row 2 of object_from_press applied to p.
   const Eigen::Isometry3d object_from_press = press_from_object.inverse();
   table_normal_ = object_from_press.linear().row(2).transpose();
@@ -36,13 +61,13 @@ std::optional<double> ApproachView::table_height_mm(const Eigen::Vector2d& xy) c
 }
 
 double ApproachView::height_mm(const Eigen::Vector2d& xy) const {
-  double h = object_->height_mm(xy) - lift_mm_;  // the floor where no triangle is
+  double h = (object_ ? object_->height_mm(xy) : 0.0) - lift_mm_;  // the floor where no triangle is
   if (const auto table = table_height_mm(xy)) h = std::max(h, *table);
   return h;
 }
 
 double ApproachView::max_height_mm(const Eigen::Vector2d& centre, double radius) const {
-  double top = object_->max_height_mm(centre, radius) - lift_mm_;
+  double top = (object_ ? object_->max_height_mm(centre, radius) : 0.0) - lift_mm_;
   // The plane's highest point over the disc.
   if (const auto table = table_height_mm(centre))
     top = std::max(top, *table + radius * table_normal_.head<2>().norm() / table_normal_.z());
@@ -50,7 +75,7 @@ double ApproachView::max_height_mm(const Eigen::Vector2d& centre, double radius)
 }
 
 double ApproachView::overlap_mm(const Eigen::Vector2d& xy, double z) const {
-  double overlap = object_->overlap_mm(xy, z + lift_mm_);
+  double overlap = object_ ? object_->overlap_mm(xy, z + lift_mm_) : -(z + lift_mm_);
   if (const auto table = table_height_mm(xy)) overlap = std::max(overlap, *table - z);
   return overlap;
 }

@@ -18,6 +18,8 @@ constexpr double kBoundSlackMm = 1e-6;
 MeshSurface::MeshSurface(const scoring::TriangleMesh& mesh) {
   Eigen::AlignedBox2d box;
   std::vector<double> top_z;
+  triangles_.reserve(mesh.triangles.size());
+  top_z.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d& a = mesh.vertices[t[0]];
     const Eigen::Vector3d& b = mesh.vertices[t[1]];
@@ -47,27 +49,34 @@ MeshSurface::MeshSurface(const scoring::TriangleMesh& mesh) {
   ny_ = std::max(1, static_cast<int>(std::ceil(size.y() / cell_mm_)));
   origin_ = box.min();
 
-  std::vector<std::vector<std::uint32_t>> lists(static_cast<std::size_t>(nx_) * ny_);
-  cell_max_z_.assign(lists.size(), 0.0);
+  // Each cell's triangles in their order, as compressed rows: counted, then
+  // placed (one allocation, not a list per cell: an approach view builds
+  // one of these for every candidate touch).
+  const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  std::vector<std::array<int, 4>> spans(triangles_.size());  // x0, y0, x1, y1
+  cell_start_.assign(cells + 1, 0);
+  cell_max_z_.assign(cells, 0.0);
   for (std::size_t i = 0; i < triangles_.size(); ++i) {
     const Triangle& t = triangles_[i];
     Eigen::AlignedBox2d tb(t.a);
     tb.extend(t.a + t.ab);
     tb.extend(t.a + t.ac);
-    int x0, y0, x1, y1;
+    auto& [x0, y0, x1, y1] = spans[i];
     cell_of(tb.min(), x0, y0);
     cell_of(tb.max(), x1, y1);
     for (int iy = y0; iy <= y1; ++iy)
       for (int ix = x0; ix <= x1; ++ix) {
-        lists[cell_index(ix, iy)].push_back(static_cast<std::uint32_t>(i));
+        ++cell_start_[static_cast<std::size_t>(cell_index(ix, iy)) + 1];
         cell_max_z_[cell_index(ix, iy)] = std::max(cell_max_z_[cell_index(ix, iy)], top_z[i]);
       }
   }
-  cell_start_.reserve(lists.size() + 1);
-  cell_start_.push_back(0);
-  for (const auto& l : lists) {
-    cell_triangles_.insert(cell_triangles_.end(), l.begin(), l.end());
-    cell_start_.push_back(static_cast<std::uint32_t>(cell_triangles_.size()));
+  for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_triangles_.resize(cell_start_.back());
+  std::vector<std::uint32_t> next(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < triangles_.size(); ++i) {
+    const auto& [x0, y0, x1, y1] = spans[i];
+    for (int iy = y0; iy <= y1; ++iy)
+      for (int ix = x0; ix <= x1; ++ix) cell_triangles_[next[cell_index(ix, iy)]++] = static_cast<std::uint32_t>(i);
   }
 }
 

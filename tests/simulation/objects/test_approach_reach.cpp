@@ -1,7 +1,9 @@
 // The object seen along a press from any side (approach_view.hpp) and the
 // reach check of such a touch (reach_check.hpp: refuse_approach).
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -133,5 +135,43 @@ TEST(ShippedMug, TheFingertipPressesInsideWhereThePalmsDomeStopsOnTheRim) {
       EXPECT_FALSE(refused) << simulation::to_string(*refused);
     else
       EXPECT_EQ(refused, simulation::ReachRefusal::Object);
+  }
+}
+
+// A view within the gel's disc (what side_touch's reach check builds for
+// every candidate) reads only the triangles near the approach, and must give
+// the full view's heights there bit for bit, and the same refusals. Shipped
+// mug and torus, approaches from 200 directions aimed round the object.
+TEST(ApproachView, WithinARadiusItGivesTheFullViewsHeightsAndRefusalsThere) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const char* shape : {"mug", "torus"}) {
+    SCOPED_TRACE(shape);
+    const simulation::Scene scene =
+        simulation::load_scene(source_dir() / "sample_clouds/closed_objects" / shape / "scene_fingertip.yaml");
+    const scoring::TriangleMesh mesh = read_placed_object_mesh(scene.object);
+    simulation::ApproachLimits limits;
+    limits.gel_radius_mm = scene.sensor.gel.radius_mm();
+    int refused = 0;
+    for (int i = 0; i < 200; ++i) {
+      const Eigen::Vector3d aim(40 * unit(rng), 30 * unit(rng), 45 + 40 * unit(rng));
+      Eigen::Vector3d direction(unit(rng), unit(rng), unit(rng));
+      if (direction.norm() < 0.1) direction = -Eigen::Vector3d::UnitZ();
+      const Eigen::Isometry3d frame = simulation::approach_frame(aim, direction);
+      const simulation::ApproachView full(mesh, frame.inverse());
+      const simulation::ApproachView near(mesh, frame.inverse(), limits.gel_radius_mm + 1.0);
+      for (double x = -limits.gel_radius_mm; x <= limits.gel_radius_mm; x += 0.5)
+        for (double y = -limits.gel_radius_mm; y <= limits.gel_radius_mm; y += 0.5) {
+          if (std::hypot(x, y) > limits.gel_radius_mm) continue;
+          ASSERT_EQ(near.height_mm({x, y}), full.height_mm({x, y})) << "approach " << i << " at " << x << ", " << y;
+        }
+      EXPECT_EQ(near.floor_mm(), full.floor_mm());
+      const auto why = simulation::refuse_approach(full, frame, {0, 0}, 0.0, limits);
+      EXPECT_EQ(simulation::refuse_approach(near, frame, {0, 0}, 0.0, limits), why) << "approach " << i;
+      refused += why.has_value();
+    }
+    // Both kinds of approach were tried: some refused, most not.
+    EXPECT_GT(refused, 10);
+    EXPECT_LT(refused, 190);
   }
 }

@@ -23,6 +23,12 @@ class ApproachView final : public ObjectSurface {
   // `object_mm`: the placed object's mesh in the object's frame (table at
   // z = 0); `press_from_object`: that frame in the press frame.
   ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::Isometry3d& press_from_object);
+  // The same for questions within `within_mm` of the press's axis, (x, y) =
+  // (0, 0), alone (a reach check: the gel's disc): only the triangles whose
+  // footprint comes that near are indexed. Inside that disc every height is
+  // the full view's, bit for bit; the floor and the table are the same
+  // everywhere.
+  ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::Isometry3d& press_from_object, double within_mm);
 
   // Heights in the press frame: negative where the object lies below its origin.
   double height_mm(const Eigen::Vector2d& xy_mm) const override;
@@ -34,7 +40,9 @@ class ApproachView final : public ObjectSurface {
   std::optional<double> table_height_mm(const Eigen::Vector2d& xy_mm) const;
 
  private:
-  std::unique_ptr<MeshSurface> object_;  // lifted by lift_mm_ so that every vertex lies above z = 0
+  // Lifted by lift_mm_ so that every vertex lies above z = 0; null where a
+  // view within a radius has no triangle facing the press there.
+  std::unique_ptr<MeshSurface> object_;
   double lift_mm_ = 0;
   // The table plane z_object = 0 in the press frame: z_object = n . p + d.
   Eigen::Vector3d table_normal_ = Eigen::Vector3d::UnitZ();

@@ -27,24 +27,24 @@ ApproachView::ApproachView(const scoring::TriangleMesh& object_mm, const Eigen::
   }
   lift_mm_ = 1.0 - lowest;
   for (auto& v : moved.vertices) v.z() += lift_mm_;
-  if (std::isfinite(within_mm)) {
+  if (!std::isfinite(within_mm)) {
+    object_ = std::make_unique<MeshSurface>(moved);
+  } else {
     // A triangle that covers a point of the disc has its footprint's box
     // there; one whose box stays farther is never read.
-    const auto near = [&](const std::array<std::uint32_t, 3>& t) {
+    const auto far = [&](const std::array<std::uint32_t, 3>& t) {
       Eigen::AlignedBox2d box(moved.vertices[t[0]].head<2>());
       box.extend(moved.vertices[t[1]].head<2>());
       box.extend(moved.vertices[t[2]].head<2>());
-      return box.squaredExteriorDistance(Eigen::Vector2d::Zero()) <= within_mm * within_mm;
+      return box.squaredExteriorDistance(Eigen::Vector2d::Zero()) > within_mm * within_mm;
     };
-    moved.triangles.erase(std::remove_if(moved.triangles.begin(), moved.triangles.end(),
-                                         [&](const std::array<std::uint32_t, 3>& t) { return !near(t); }),
-                          moved.triangles.end());
-  }
-  if (!moved.triangles.empty()) {
-    try {
-      object_ = std::make_unique<MeshSurface>(moved);
-    } catch (const InputError&) {
-      // Near the axis only triangles edge-on to the press: nothing faces it.
+    moved.triangles.erase(std::remove_if(moved.triangles.begin(), moved.triangles.end(), far), moved.triangles.end());
+    if (!moved.triangles.empty()) {
+      try {
+        object_ = std::make_unique<MeshSurface>(moved);
+      } catch (const InputError&) {
+        // Near the axis only triangles edge-on to the press: nothing faces it there.
+      }
     }
   }
   // z_object = row 2 of object_from_press applied to p.

@@ -118,6 +118,7 @@ class Runner {
           if (std::count(stream_->capture_types.begin(), stream_->capture_types.end(), out.type))
             capture_.push_back(s->id + "." + out.name);
     captured_ = {options_.capture.begin(), options_.capture.end()};
+    capture_keys_ = {capture_.begin(), capture_.end()};
     for (const auto& key : capture_) {
       const auto dot = key.rfind('.');
       const std::string id = key.substr(0, dot), port = dot == std::string::npos ? "" : key.substr(dot + 1);
@@ -236,10 +237,12 @@ class Runner {
     // read in the loop be produced again (or fails), so no reader needs them,
     // and a stage that updates a model it hands out (gpis_surface) then holds
     // the only reference and need not copy it. Those read only after the
-    // loop stay: a call may skip them.
+    // loop stay: a call may skip them. So do captured ones: the live view
+    // tells a new value by its address, which a freed one could pass on.
     const std::set<std::string> after_loop = after_loop_outputs(s);
     for (const auto& out : s.ports->outputs())
-      if (!after_loop.count(out.name)) values_.erase(s.id + "." + out.name);
+      if (const std::string key = s.id + "." + out.name; !after_loop.count(out.name) && !capture_keys_.count(key))
+        values_.erase(key);
     Value::Outputs outputs = process(s, inputs);
     for (auto& [port, value] : outputs) {
       Value& kept = values_[s.id + "." + port] = {std::move(value), {}, {}};
@@ -329,6 +332,7 @@ class Runner {
   const RunOptions& options_;
   const StreamOptions* stream_;  // null: not streaming
   std::vector<std::string> capture_;  // RunOptions::capture and, streaming, the outputs of its capture_types
+  std::set<std::string> capture_keys_;  // the same, to look up
   Values values_;
   std::set<std::string> captured_;                          // RunOptions::capture
   std::map<std::string, std::vector<Value>> every_call_;  // RunOptions::capture_every_call

@@ -143,6 +143,18 @@ TEST_F(PipelineRunner, AStageHoldsTheOnlyReferenceToItsLastOutputWhenItIsCalledA
   EXPECT_EQ(series(r, "held.copies"), (std::vector<double>{0}));
 }
 
+TEST_F(PipelineRunner, ACapturedOutputStaysHeldUntilItsStageReplacesIt) {
+  // The live view tells a new value by its address: a captured value let go
+  // of before the call could hand its address to the next one.
+  Pipeline p = load(kHeldCloud);
+  RunOptions o;
+  o.quiet = true;
+  o.capture = {"held.cloud"};
+  const RunResult r = run_pipeline(p, o);
+  EXPECT_EQ(series(r, "held.copies"), (std::vector<double>{4}));
+  EXPECT_EQ(std::any_cast<CloudConstPtr>(r.captured.at("held.cloud"))->size(), 5u);
+}
+
 TEST_F(PipelineRunner, AnOutputKeptFromEveryCallIsCopiedNotChangedUnderTheKeeper) {
   Pipeline p = load(kHeldCloud);
   RunOptions o;

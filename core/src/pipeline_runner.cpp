@@ -135,12 +135,12 @@ class Runner {
     }
   }
 
-  void run_nodes(std::vector<ResolvedNode>& nodes) { run_nodes(nodes, 0, nodes.size()); }
-  void run_nodes(std::vector<ResolvedNode>& nodes, std::size_t first, std::size_t last) {
-    for (std::size_t i = first; i < last; ++i) {
-      if (nodes[i].stage) run_stage(*nodes[i].stage);
-      else run_loop(*nodes[i].loop);
-    }
+  void run_nodes(std::vector<ResolvedNode>& nodes) {
+    for (auto& n : nodes) run_node(n);
+  }
+  void run_node(ResolvedNode& n) {
+    if (n.stage) run_stage(*n.stage);
+    else run_loop(*n.loop);
   }
 
   // Each output read from the loop's previous iteration (`stage.port@previous`),
@@ -182,7 +182,7 @@ class Runner {
       for (auto* s : loop.stages) s->iteration = static_cast<int>(i);
       ++loop_depth_;
       for (std::size_t n = 0; n < loop.body.size(); ++n) {
-        run_nodes(loop.body, n, n + 1);
+        run_node(loop.body[n]);
         // Let go of what no later node of this iteration reads: a stage
         // that updates a model in place then need not copy it.
         for (const auto& [key, node] : last_reader)

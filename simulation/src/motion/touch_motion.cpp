@@ -62,15 +62,26 @@ void TouchMotion::observe_overlap(bool overlapping) {
   if (overlapping && !first_contact_) first_contact_ = height_;
   if (pressed_) {
     touching_ = false;  // the recorded frame ends the touch
+    ++settled_touches_;
     return;
   }
   if (travel_past_contact_mm() > robot_.max_contact_depth_mm) {
     std::ostringstream s;
     s << "touch " << touch_ << " at (" << target_.xy_mm.x() << ", " << target_.xy_mm.y() << ") mm: the sensor is "
       << travel_past_contact_mm() << " mm past first contact (frame " << frame_ << " of the touch, sensor origin at z = "
-      << height_ << " mm), beyond max_contact_depth_mm = " << robot_.max_contact_depth_mm
-      << ", and the pipeline reported no stable contact (is input 'contact' wired to a stable-contact stage, "
-         "and does the scene have the 'contact' effect?)";
+      << height_ << " mm), beyond max_contact_depth_mm = " << robot_.max_contact_depth_mm;
+    // Once a touch has settled the wiring is known to work: what failed is
+    // this contact, and the frames it would record are ones the pipeline
+    // itself did not trust (recording them anyway put a mug's surface 15 mm
+    // off), so the run still ends, naming the likely cause.
+    if (settled_touches_ > 0)
+      s << ", and the pipeline saw no stable contact in it, although " << settled_touches_
+        << " earlier touch(es) of the run settled: the gel met something it could not settle on (an edge, a rim, "
+           "a thin part), or the sensor's images lost the contact (raise max_contact_depth_mm, or make the "
+           "stable-contact stage less strict)";
+    else
+      s << ", and the pipeline has reported no stable contact in this run (is input 'contact' wired to a "
+           "stable-contact stage, and does the scene have the 'contact' effect?)";
     throw RunError(s.str());
   }
 }

@@ -70,7 +70,8 @@ class TouchMotion {
 
   // Tells the motion whether the gel overlaps the object in the frame just
   // stepped; RunError when it is more than max_contact_depth_mm past first
-  // contact without a stable contact.
+  // contact without a stable contact, saying whether earlier touches settled
+  // (then the contact failed, not the wiring).
   void observe_overlap(bool overlapping);
   double travel_past_contact_mm() const { return first_contact_ ? *first_contact_ - height_ : 0.0; }
   const RobotSpec& robot() const { return robot_; }
@@ -84,6 +85,7 @@ class TouchMotion {
   double step_mm_, approach_step_mm_;
   bool touching_ = false;
   int touch_ = -1, frame_ = 0;
+  int settled_touches_ = 0;  // touches recorded after a stable contact
   bool pressed_ = false;
   PressTarget target_;
   double height_ = 0;

@@ -86,13 +86,15 @@ def command(args, method, shape, seed, out):
     return [args.touchcloud, "run", pipeline, "--seed", str(seed), "--quiet", "--out", out,
             "--scene", f"sample_clouds/closed_objects/{shape}/{scene}",
             "--set", f"explore.max_iterations={touches}", "--set", "score.metrics=all",
-            "--set", f"score.fscore_threshold_mm={args.fscore_mm}"]
+            "--set", f"score.fscore_threshold_mm={args.fscore_mm}"] + \
+        [word for override in args.set for word in ("--set", override)]
 
 
 def run_name(args, shape, method, seed):
     """A run's folder: named by everything its figures depend on, so a kept one is only taken for the same run."""
     touches = args.all_sides_touches if METHODS[method][3] else args.touches
-    return f"{shape}-{method}-{touches}touches-seed{seed}-fscore{args.fscore_mm:g}mm"
+    name = f"{shape}-{method}-{touches}touches-seed{seed}-fscore{args.fscore_mm:g}mm"
+    return name + "".join("-" + re.sub(r"[^A-Za-z0-9._]", "_", override) for override in args.set)
 
 
 def write_off_table_mesh(shape, path):
@@ -180,6 +182,10 @@ def main():
     parser.add_argument("--runs", help="keep each run's folder here (default: a temporary folder, removed); a run "
                                        "whose folder already holds its summary.json (or failure.txt) is not made "
                                        "again")
+    parser.add_argument("--set", action="append", default=[], metavar="STAGE.PARAM=VALUE",
+                        help="a parameter of every run's pipeline, as touchcloud run --set takes it (repeat for "
+                             "more; with --methods whose pipelines have that stage): a variant of the table, its "
+                             "runs kept apart in --runs")
     args = parser.parse_args()
     try:
         seeds = seed_list(args.seeds)
@@ -194,6 +200,9 @@ def main():
     unknown = [m for m in methods if m not in METHODS]
     if unknown:
         parser.error(f"--methods: no method {', '.join(unknown)} (of {', '.join(METHODS)})")
+    malformed = [o for o in args.set if not re.fullmatch(r"[A-Za-z0-9_]+\.[A-Za-z0-9_]+=.+", o)]
+    if malformed:
+        parser.error(f"--set {malformed[0]}: give STAGE.PARAM=VALUE")
     if args.touches < 1 or args.all_sides_touches < 1:
         parser.error("--touches and --all-sides-touches must be at least 1")
     os.makedirs(args.out, exist_ok=True)
@@ -287,7 +296,8 @@ def main():
         f.write(f"# Closed shapes: touched from above and from any side\n\n"
                 f"Made by `benchmarks/closed_objects/make_closed_objects_table.py --out {args.out} "
                 f"--seeds {args.seeds} --touches {args.touches} --all-sides-touches {args.all_sides_touches} "
-                f"--shapes {','.join(shapes)} --methods {','.join(methods)}` (at most {args.touches} touches from "
+                f"--shapes {','.join(shapes)} --methods {','.join(methods)}"
+                f"{''.join(' --set ' + o for o in args.set)}` (at most {args.touches} touches from "
                 f"above, {args.all_sides_touches} from any side, fewer where nothing reachable is left; the "
                 f"simulator's ideal sensor, but for the realistic sensor's rows) on {platform.machine()} Linux with {os.cpu_count()} cores. Mean ± sd "
                 f"over {len(seeds)} seed(s). Distances in mm against the whole closed mesh; F-score and coverage at "

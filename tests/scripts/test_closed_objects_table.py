@@ -1,9 +1,10 @@
 """benchmarks/closed_objects/make_closed_objects_table.py on one shape, one
 seed and two touches from above and from any side: every file it promises,
 one summary row per method (the all-sides rows with the Palm's dome, the
-fingertip's and the realistic sensor's), a curve row per touch, the F-score off the table, and bad
-arguments refused before anything runs."""
+fingertip's and the realistic sensor's), a curve row per touch, the F-score off the table, a variant
+(--set) kept apart from the plain runs, and bad arguments refused before anything runs."""
 import csv
+import json
 import math
 import os
 import pathlib
@@ -77,7 +78,8 @@ def test_the_mugs_regions_cover_it_once_and_a_surface_there_recalls_only_its_reg
 def test_bad_arguments_are_refused_before_any_run(tmp_path):
     for args, says in ((["--shapes", "cube"], "no shape cube"), (["--seeds", "one"], "--seeds 'one'"),
                        (["--touches", "0"], "--touches"), (["--all-sides-touches", "0"], "--all-sides-touches"),
-                       (["--methods", "all_sides,above"], "no method above")):
+                       (["--methods", "all_sides,above"], "no method above"),
+                       (["--set", "reselect_growth=0.2"], "--set reselect_growth=0.2: give STAGE.PARAM=VALUE")):
         r = table(tmp_path / "out", *args)
         assert r.returncode == 2 and says in r.stderr, (args, r.stderr)
     assert not (tmp_path / "out").exists()
@@ -105,3 +107,25 @@ def test_a_failed_run_is_listed_and_a_kept_run_is_not_made_again(tmp_path):
     assert [r["failure"] for r in rows(tmp_path / "second/runs.csv")] == ["", "no run here"]
     # The failure is kept with the run: a seeded run would fail again.
     assert "no run here" in next(runs.glob("pebble-implicit-*/failure.txt")).read_text()
+
+
+def test_a_variant_set_on_every_run_is_kept_apart_and_named(tmp_path):
+    runs = tmp_path / "runs"
+    common = ["--shapes", "pebble", "--methods", "all_sides", "--all-sides-touches", "2", "--runs", str(runs)]
+    plain = table(tmp_path / "plain", *common)
+    assert plain.returncode == 0, plain.stderr
+    variant = table(tmp_path / "variant", *common, "--set", "fit.reselect_growth=0", "--set", "fit.offset_mm=3")
+    assert variant.returncode == 0, variant.stderr
+    # Two runs in --runs, the variant's named by its parameters, and each
+    # made with its own: the kept plain run is not taken for the variant.
+    made = sorted(p.name for p in runs.iterdir())
+    assert made == ["pebble-all_sides-2touches-seed1-fscore2mm",
+                    "pebble-all_sides-2touches-seed1-fscore2mm-fit.reselect_growth_0-fit.offset_mm_3"], made
+    summary = lambda name: json.loads((runs / name / "summary.json").read_text())
+    fit = lambda name: next(s for s in summary(name)["stages"] if s["id"] == "fit")["params"]
+    assert fit(made[0])["offset_mm"] == 2.0 and fit(made[1])["offset_mm"] == 3.0
+    assert {"key": "fit.reselect_growth", "origin": "--set", "value": "0"} in summary(made[1])["overrides"]
+    assert rows(tmp_path / "plain/results.csv")[0]["chamfer_est_to_gt"] != \
+        rows(tmp_path / "variant/results.csv")[0]["chamfer_est_to_gt"]
+    assert "--methods all_sides --set fit.reselect_growth=0 --set fit.offset_mm=3`" in \
+        (tmp_path / "variant/results.md").read_text()

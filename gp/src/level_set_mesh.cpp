@@ -38,6 +38,34 @@ SampleGrid grid_around(const Eigen::MatrixX3d& points, double margin_mm, int cel
   return g;
 }
 
+SampleGrid grid_around(const Eigen::MatrixX3d& points, double margin_mm, int cells, double table_z_mm) {
+  if (!std::isfinite(table_z_mm)) throw InputError("level-set grid: the table's height must be finite");
+  Eigen::MatrixX3d with_table(points.rows() + 1, 3);
+  with_table << points, Eigen::RowVector3d::Zero();
+  if (points.rows() > 0) with_table.bottomRows(1) << points(0, 0), points(0, 1), table_z_mm;
+  SampleGrid g = grid_around(points.rows() > 0 ? with_table : points, margin_mm, cells);
+  // Lower the origin by less than a spacing, one more layer keeping the top.
+  const double layers = (table_z_mm - g.origin_mm.z()) / g.spacing_mm;
+  const double down = 0.5 - (layers - std::floor(layers));
+  const double shift = down < 0 ? down + 1 : down;
+  if (shift > 0) {
+    g.origin_mm.z() -= shift * g.spacing_mm;
+    ++g.points.z();
+  }
+  return g;
+}
+
+void clip_above_table(const SampleGrid& grid, double table_z_mm, Eigen::VectorXd& values) {
+  if (values.size() != grid.size())
+    throw InputError("table clip: " + std::to_string(values.size()) + " values for a grid of " +
+                     std::to_string(grid.size()) + " samples");
+  const Eigen::Index layer = Eigen::Index{grid.points.x()} * grid.points.y();
+  for (int k = 0; k < grid.points.z(); ++k) {
+    const double below = table_z_mm - (grid.origin_mm.z() + grid.spacing_mm * k);
+    values.segment(k * layer, layer) = values.segment(k * layer, layer).cwiseMax(below);
+  }
+}
+
 scoring::TriangleMesh zero_level_set(const SampleGrid& grid, const Eigen::VectorXd& values) {
   if (values.size() != grid.size())
     throw InputError("level set: " + std::to_string(values.size()) + " values for a grid of " +

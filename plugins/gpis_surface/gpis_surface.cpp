@@ -18,6 +18,13 @@
 // z axis: the gel presses along +z of the sensor frame); without the tactile input each touch's normal
 // is its patch's plane normal, turned away from the centroid of all points.
 //
+// table_z_mm: the object rests on a table there (base frame). The meshed
+// field is the model's clipped to the space above the plane
+// (gp::clip_above_table), so the mesh and the cloud out stop at the table and
+// are closed by it where the model's inside reaches it: the face the object
+// stands on, which no touch reaches. The `implicit` and `surface` outputs
+// stay the model itself.
+//
 // The `surface` output is the model as a press from above meets it
 // (top_surface.hpp), for next_touch to choose where it is least certain; the
 // `implicit` output is the model itself, for side_touch's touches from any
@@ -54,6 +61,8 @@ class GpisSurface final : public Stage {
   double margin_mm_ = 5.0;
   std::int64_t samples_ = 20000;
   std::optional<std::string> mesh_path_;
+  std::optional<double> table_z_mm_;
+  bool warned_below_table_ = false;
   std::int64_t threads_ = 0;
   double scale_floor_ = 1;  // the thin-plate R's floor last reported
   // Shared with the `surface` output until the next touch.
@@ -104,6 +113,9 @@ class GpisSurface final : public Stage {
         .doc("points sampled uniformly by area on the mesh, the cloud out");
     p.add("threads", threads_, std::int64_t{0}).at_least(0).unit("threads")
         .doc("threads of the mean on the grid (0: one per core); the surface is the same for any count");
+    p.add("table_z_mm", table_z_mm_).unit("mm")
+        .doc("height of the table the object rests on, base frame (the simulator's table: 0): the mesh and the cloud "
+             "out stop there and are closed by it where the surface's inside reaches it; not set: no table");
     p.add("mesh", mesh_path_).output_file()
         .doc("PLY file in the output folder for the last mesh, with each vertex's variance (mm^2); not set: none");
   }
@@ -115,6 +127,7 @@ class GpisSurface final : public Stage {
   }
   void on_configure(RunContext&) override {
     options_.max_training_points = exact_max_points_;
+    warned_below_table_ = false;
     touches_.clear();
     if (form_ != ImplicitForm::sparse)
       model_ = std::make_shared<gp::ImplicitSurface>(options_);
@@ -172,8 +185,15 @@ class GpisSurface final : public Stage {
       ctx.log("warning: " + text.str());
     }
 
-    const gp::SampleGrid grid = gp::grid_around(model->contact_points(), margin_mm_, static_cast<int>(cells_));
-    mesh_ = gp::zero_level_set(grid, model->mean(grid.sample_points(), static_cast<int>(threads_)));
+    const Eigen::MatrixX3d& contacts = model->contact_points();
+    const gp::SampleGrid grid = table_z_mm_ ? gp::grid_around(contacts, margin_mm_, static_cast<int>(cells_), *table_z_mm_)
+                                            : gp::grid_around(contacts, margin_mm_, static_cast<int>(cells_));
+    Eigen::VectorXd values = model->mean(grid.sample_points(), static_cast<int>(threads_));
+    if (table_z_mm_) {
+      warn_of_points_below_table(contacts, ctx);
+      gp::clip_above_table(grid, *table_z_mm_, values);
+    }
+    mesh_ = gp::zero_level_set(grid, values);
     if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
     ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
     if (io.wants("surface")) {
@@ -182,6 +202,20 @@ class GpisSurface final : public Stage {
       surface_ = std::make_shared<ImplicitTopSurface<Model>>(model, top_z_mm, 1.0);
     }
     if (io.wants("implicit")) implicit_ = std::make_shared<gp::HeldImplicitModel<Model>>(model);
+  }
+
+  // Touched points well below the table are cut off the mesh: the table's
+  // height or the touches are wrong. Said once.
+  void warn_of_points_below_table(const Eigen::MatrixX3d& contacts, RunContext& ctx) {
+    static constexpr double kBelowMm = 2.0;
+    const double lowest = contacts.col(2).minCoeff();
+    if (warned_below_table_ || lowest >= *table_z_mm_ - kBelowMm) return;
+    warned_below_table_ = true;
+    std::ostringstream text;
+    text << "a touched point lies " << *table_z_mm_ - lowest << " mm below the table (table_z_mm " << *table_z_mm_
+         << "): the mesh leaves out what lies below it; is table_z_mm the table's height in the base frame?";
+    ctx.note("below_table", text.str());
+    ctx.log("warning: " + text.str());
   }
 
   // The run's touch (the loop's iteration) where there is one, else the

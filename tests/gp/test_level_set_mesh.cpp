@@ -86,6 +86,54 @@ TEST(LevelSetMesh, RefusesBadInput) {
   EXPECT_THROW(gp::zero_level_set(grid, f), InputError);
 }
 
+// A ball of radius 10 mm whose centre is 5 mm above a table: the clipped
+// field's level set is the ball above the table, closed by a flat disc of
+// radius sqrt(10^2 - 5^2) on it; unclipped, the whole ball.
+TEST(LevelSetMesh, TheTableClosesAnObjectStandingOnIt) {
+  Eigen::MatrixX3d corners(2, 3);
+  corners << -10, -10, -5, 10, 10, 15;
+  const double table_z = 0;
+  const gp::SampleGrid grid = gp::grid_around(corners, 2.0, 48, table_z);
+  // The table's plane midway between two layers of samples.
+  const double layers = (table_z - grid.origin_mm.z()) / grid.spacing_mm;
+  EXPECT_NEAR(layers - std::floor(layers), 0.5, 1e-9);
+  EXPECT_GE(grid.origin_mm.z() + grid.spacing_mm * (grid.points.z() - 1), 15.0 + 2.0);
+  const Eigen::MatrixX3d at = grid.sample_points();
+  const Eigen::VectorXd ball = (at.rowwise() - Eigen::RowVector3d(0, 0, 5)).rowwise().norm().array() - 10.0;
+  double lowest = 0;
+  for (const auto& v : gp::zero_level_set(grid, ball).vertices) lowest = std::min(lowest, v.z());
+  EXPECT_LT(lowest, -4.9) << "unclipped: the ball below the table";
+
+  Eigen::VectorXd clipped = ball;
+  gp::clip_above_table(grid, table_z, clipped);
+  const scoring::TriangleMesh mesh = gp::zero_level_set(grid, clipped);
+  const Topology t = topology(mesh);
+  EXPECT_EQ(t.open_edges, 0u);
+  EXPECT_EQ(t.euler, 2);
+  double cap_area = 0, worst_ball = 0;
+  for (const auto& tri : mesh.triangles) {
+    const Eigen::Vector3d &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+    const double area = (b - a).cross(c - a).norm() / 2;
+    if (std::max({std::abs(a.z()), std::abs(b.z()), std::abs(c.z())}) < 1e-9) {
+      cap_area += area;
+      EXPECT_LT((b - a).cross(c - a).z(), 0.0) << "the cap faces down into the table, outside the object";
+    }
+  }
+  for (const auto& v : mesh.vertices) {
+    EXPECT_GE(v.z(), table_z - 1e-9);
+    // Above the crease along the rim, where an edge's interpolation mixes the ball and the plane.
+    if (v.z() > grid.spacing_mm) worst_ball = std::max(worst_ball, std::abs((v - Eigen::Vector3d(0, 0, 5)).norm() - 10.0));
+  }
+  EXPECT_LT(worst_ball, 0.01);
+  // The disc of radius r = sqrt(75), less at most a cell-wide ring at its
+  // rim, where the triangles bend up to the ball.
+  const double r = std::sqrt(75.0);
+  EXPECT_LE(cap_area, std::numbers::pi * r * r);
+  EXPECT_GE(cap_area, std::numbers::pi * (r - grid.spacing_mm) * (r - grid.spacing_mm));
+  Eigen::VectorXd too_few = ball.head(3);
+  EXPECT_THROW(gp::clip_above_table(grid, table_z, too_few), InputError);
+}
+
 // Touches of the sphere (40) and the torus (72): closed meshes of genus 0
 // and 1 whose vertices lie within 0.5 mm of the true surfaces (the grid's
 // 1.6 mm cells and the GP's error together).

@@ -107,6 +107,69 @@ TEST_F(GpisSurfaceStage, RefusesTouchesWithoutSide) {
   }
 }
 
+// A ball standing on a table 10 mm below its centre, touched above the
+// table only: with table_z_mm the cloud out stops at the table and the disc
+// where the ball meets it (radius sqrt(20^2 - 10^2)) closes it; without, the
+// model's surface goes on below the table. Touched points well below the
+// table are named once.
+TEST_F(GpisSurfaceStage, TheTableClosesTheObjectStandingOnItAndNothingLiesBelow) {
+  const test::SphereObject sphere;
+  const double table_z = sphere.centre_mm.z() - 10;
+  std::vector<gp::ImplicitTouch> above;
+  for (const auto& t : sphere.touches(40))
+    if (t.points_mm.col(2).minCoeff() > table_z + 1) above.push_back(t);
+  ASSERT_GE(above.size(), 24u);
+  // The stage run over those touches; its harness holds the metrics and
+  // notes, and the plugin's library the cloud's code.
+  struct Fit {
+    std::unique_ptr<test::StageHarness> stage;
+    CloudConstPtr cloud;
+  };
+  const auto fit = [&](std::map<std::string, ParamValue> params) {
+    params.insert({{"cells", std::int64_t{24}}, {"samples", std::int64_t{4000}}, {"reselect_growth", 1.0}});
+    Fit f{std::make_unique<test::StageHarness>("gpis_surface", params, "fit"), nullptr};
+    f.stage->configure();
+    f.cloud = touch_all(*f.stage, above);
+    f.stage->finish();
+    return f;
+  };
+  const Fit unbounded = fit({});
+  const CloudConstPtr free = unbounded.cloud;
+  const auto lowest = [](const PointCloud& c) {
+    float z = 1e9f;
+    for (const auto& p : c.points) z = std::min(z, p.z);
+    return double{z};
+  };
+  EXPECT_LT(lowest(*free), table_z - 2);
+
+  const Fit standing = fit({{"table_z_mm", table_z}});
+  const CloudConstPtr on_table = standing.cloud;
+  EXPECT_TRUE(standing.stage->record().notes.empty());
+  EXPECT_GE(lowest(*on_table), table_z - 1e-4);
+  const double disc_radius = std::sqrt(20.0 * 20 - 10 * 10);
+  std::size_t on_disc = 0;
+  double worst_ball = 0;
+  for (const auto& p : on_table->points) {
+    const Eigen::Vector3d q = p.getVector3fMap().cast<double>();
+    if (std::abs(q.z() - table_z) < 1e-3) {
+      ++on_disc;
+      EXPECT_LT(std::hypot(q.x() - sphere.centre_mm.x(), q.y() - sphere.centre_mm.y()), disc_radius + 1.0);
+    } else if (q.z() > table_z + 3) {  // the last touches' points lie 1 mm or more above the table
+      worst_ball = std::max(worst_ball, std::abs((q - sphere.centre_mm).norm() - sphere.radius_mm));
+    }
+  }
+  EXPECT_LT(worst_ball, 0.5);
+  // Sampled by area: the disc's share of the ball's cap above the table and the disc (pi r^2 against 2 pi R h).
+  const double disc_share = disc_radius * disc_radius / (disc_radius * disc_radius + 2 * 20.0 * 30.0);
+  EXPECT_NEAR(static_cast<double>(on_disc) / on_table->size(), disc_share, 0.3 * disc_share);
+
+  const Fit too_high = fit({{"table_z_mm", sphere.centre_mm.z() + 5}});
+  const auto& notes = too_high.stage->record().notes;
+  ASSERT_EQ(notes.count("fit.below_table"), 1u);
+  EXPECT_NE(notes.at("fit.below_table").find("below the table (table_z_mm 45)"), std::string::npos)
+      << notes.at("fit.below_table");
+}
+
 // form: sparse (inducing sites 5 mm apart) meets the exact form's tolerance on the sphere.
 TEST_F(GpisSurfaceStage, SparseFormOnTheSphere) {
   test::StageHarness h("gpis_surface", {{"form", std::string("sparse")}, {"inducing_spacing_mm", 5.0},

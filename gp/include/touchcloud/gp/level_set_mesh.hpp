@@ -24,6 +24,19 @@ struct SampleGrid {
 // non-positive margin or fewer than 2 cells.
 SampleGrid grid_around(const Eigen::MatrixX3d& points_mm, double margin_mm, int cells);
 
+// The same box, reaching `margin_mm` below a table at z = `table_z_mm` too,
+// and the table's plane midway between two layers of samples (so that
+// clip_above_table's cap crosses grid edges, never lies on samples).
+SampleGrid grid_around(const Eigen::MatrixX3d& points_mm, double margin_mm, int cells, double table_z_mm);
+
+// An object resting on a table: a signed distance (positive outside)
+// sampled on `grid` becomes its max with the height below the plane z =
+// `table_z_mm`, the intersection of its inside with the space above the
+// table. Its zero level set then lies on or above the plane, closed by the
+// plane where the inside reaches it: the face the object stands on, which no
+// touch can reach. InputError for a value count that does not match.
+void clip_above_table(const SampleGrid& grid, double table_z_mm, Eigen::VectorXd& values);
+
 // The surface where `values` (one per grid sample) cross 0; the triangles
 // share their vertices and face the positive side. A level set that stays
 // inside the grid is closed. InputError for a value count that does not

@@ -75,6 +75,31 @@ def test_the_mugs_regions_cover_it_once_and_a_surface_there_recalls_only_its_reg
     assert recall["inner floor"] > 0.95 and recall["rim"] == 0 and recall["bottom, on the table"] == 0, recall
 
 
+def test_the_score_off_the_table_leaves_out_the_surfaces_points_on_the_table(tmp_path):
+    sys.path.insert(0, str(SCRIPT.parent))
+    from make_closed_objects_table import write_off_table_points
+    import struct
+    points = [(1.0, 2.0, 0.0), (3.0, 4.0, 0.0004), (5.0, 6.0, 0.002), (7.0, 8.0, 12.5), (9.0, 1.0, -0.0002)]
+    surface = tmp_path / "s.pcd"
+    surface.write_bytes(("# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                         f"WIDTH {len(points)}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(points)}\n"
+                         "DATA binary\n").encode() + b"".join(struct.pack("<fff", *p) for p in points))
+    assert write_off_table_points(str(surface), str(tmp_path / "off.pcd")) == 3
+    # The CLI reads what is left: the two points off the table, as they were.
+    r = subprocess.run([str(CLI), "score", str(tmp_path / "off.pcd"), "--gt", str(tmp_path / "off.pcd"), "--json",
+                        "--metrics", "chamfer_est_to_gt"], capture_output=True, text=True)
+    assert r.returncode == 0 and json.loads(r.stdout)[0]["metrics"]["chamfer_est_to_gt_mm"] == 0.0, r.stderr
+    lines = (tmp_path / "off.pcd").read_text().splitlines()
+    assert "POINTS 2" in lines and [tuple(map(float, l.split())) for l in lines[-2:]] == \
+        [struct.unpack("<fff", struct.pack("<fff", *p)) for p in points[2:4]]
+    surface.write_text("VERSION 0.7\nFIELDS x y z\nDATA ascii\n1 2 3\n")
+    try:
+        write_off_table_points(str(surface), str(tmp_path / "off.pcd"))
+        assert False, "an ASCII PCD was taken"
+    except RuntimeError as e:
+        assert "not a binary PCD" in str(e)
+
+
 def test_bad_arguments_are_refused_before_any_run(tmp_path):
     for args, says in ((["--shapes", "cube"], "no shape cube"), (["--seeds", "one"], "--seeds 'one'"),
                        (["--touches", "0"], "--touches"), (["--all-sides-touches", "0"], "--all-sides-touches"),

@@ -1,8 +1,9 @@
 // pipelines/closed_object_active.yaml as shipped, on its pebble: touches from
 // above fitted by the implicit surface, beside the main job's height field
 // with the same touch budget. The height field carries the pebble's sides
-// down to the table, where there is no object; the implicit surface closes
-// round what was touched, so its Eq. 11 is a fraction of the height field's.
+// straight down to the table, where there is no object; the implicit surface
+// closes round what was touched and, below it, on the table (table_z_mm), so
+// its Eq. 11 is half the height field's or less.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -30,8 +31,9 @@ TEST(ClosedObjectActive, TheImplicitSurfaceDoesNotCarryAClosedObjectsSidesDownTo
   const nlohmann::json height = run_pebble("fox_mask_active.yaml", dir / "height");
   EXPECT_EQ(metric(implicit, "plan.touches_planned"), 8);
   EXPECT_EQ(metric(height, "plan.touches_planned"), 8);
-  // Measured: 0.59 mm against 4.26 mm (seed 1).
-  EXPECT_LT(metric(implicit, "score.chamfer_est_to_gt"), 1.0);
+  // Measured: 2.07 mm against 4.26 mm (seed 1); 0.59 mm with a surface left
+  // open 5 mm below the lowest touch, before the table closed it.
+  EXPECT_LT(metric(implicit, "score.chamfer_est_to_gt"), 0.6 * metric(height, "score.chamfer_est_to_gt"));
   EXPECT_GT(metric(height, "score.chamfer_est_to_gt"), 3.0);
   EXPECT_GT(metric(implicit, "score.fscore"), metric(height, "score.fscore"));
   // The last mesh, with each vertex's variance, named after the scene.

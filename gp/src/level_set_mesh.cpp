@@ -40,10 +40,10 @@ SampleGrid grid_around(const Eigen::MatrixX3d& points, double margin_mm, int cel
 
 SampleGrid grid_around(const Eigen::MatrixX3d& points, double margin_mm, int cells, double table_z_mm) {
   if (!std::isfinite(table_z_mm)) throw InputError("level-set grid: the table's height must be finite");
+  if (points.rows() == 0) return grid_around(points, margin_mm, cells);  // refused there
   Eigen::MatrixX3d with_table(points.rows() + 1, 3);
-  with_table << points, Eigen::RowVector3d::Zero();
-  if (points.rows() > 0) with_table.bottomRows(1) << points(0, 0), points(0, 1), table_z_mm;
-  SampleGrid g = grid_around(points.rows() > 0 ? with_table : points, margin_mm, cells);
+  with_table << points, Eigen::RowVector3d(points(0, 0), points(0, 1), table_z_mm);
+  SampleGrid g = grid_around(with_table, margin_mm, cells);
   // Lower the origin by less than a spacing, one more layer keeping the top.
   const double layers = (table_z_mm - g.origin_mm.z()) / g.spacing_mm;
   const double down = 0.5 - (layers - std::floor(layers));

@@ -78,6 +78,8 @@ TEST(LevelSetMesh, RefusesBadInput) {
   p << 0, 0, 0;
   EXPECT_THROW(gp::grid_around(Eigen::MatrixX3d(0, 3), 1.0, 8), InputError);
   EXPECT_THROW(gp::grid_around(p, 0.0, 8), InputError);
+  EXPECT_THROW(gp::grid_around(Eigen::MatrixX3d(0, 3), 1.0, 8, 0.0), InputError);
+  EXPECT_THROW(gp::grid_around(p, 1.0, 8, std::nan("")), InputError);
   const gp::SampleGrid grid = gp::grid_around(p, 1.0, 4);
   EXPECT_THROW(gp::zero_level_set(grid, Eigen::VectorXd::Zero(3)), InputError);
   Eigen::VectorXd f = Eigen::VectorXd::Ones(grid.size());

@@ -6,6 +6,6 @@ cd "$(dirname "$0")/.."
 scripts/build.sh
 build=${TOUCHCLOUD_BUILD_DIR:-build}
 # One job more than the cores: some tests wait on subprocesses, a browser or
-# files (on 2 cores, with ctest's timings of an earlier run, 521 s with 3 jobs
-# against 555 s with 2).
+# files (on 2 cores, with ctest's timings of an earlier run, 521 and 543 s in
+# two runs with 3 jobs against 555 s with 2: a small gain).
 ctest --test-dir "$build" --output-on-failure -j "$(( $(nproc) + 1 ))" "$@"

@@ -40,18 +40,17 @@ import argparse
 import csv
 import json
 import os
-import math
 import platform
 import re
 import statistics
-import struct
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from mpi_launch import run_all  # noqa: E402
-from region_recall import area, on_table as is_on_table, placed_mesh, region_meshes, region_recalls, write_ply  # noqa: E402
+from region_recall import (area, on_table as is_on_table, placed_mesh, read_xyz_pcd, region_meshes,  # noqa: E402
+                           region_recalls, write_ply)
 
 SHAPES = ["sphere", "pebble", "step", "torus", "mug"]
 # key: (method as the table names it, pipeline, scene file in the shape's folder, touched from any side)
@@ -118,17 +117,7 @@ def write_off_table_points(surface, path):
     """The points of a binary x y z PCD (cloud_writer's) that do not lie on
     the table (z = 0, where gpis_surface's table_z_mm closes a surface),
     written to `path` as an ASCII PCD; how many were left out."""
-    with open(surface, "rb") as f:
-        data = f.read()
-    marker = b"DATA binary\n"
-    if marker not in data:
-        raise RuntimeError(f"{surface}: not a binary PCD")
-    body = data.index(marker) + len(marker)
-    header = data[:body].decode("ascii")
-    count = re.search(r"^POINTS (\d+)$", header, re.M)
-    if "FIELDS x y z\n" not in header or "TYPE F F F\n" not in header or not count:
-        raise RuntimeError(f"{surface}: not an x y z float PCD")
-    points = list(struct.iter_unpack("<fff", data[body:body + 12 * int(count.group(1))]))
+    points = read_xyz_pcd(surface)
     kept = [p for p in points if abs(p[2]) > TABLE_TOLERANCE_MM]
     with open(path, "w") as f:
         f.write("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"

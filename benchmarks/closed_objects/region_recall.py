@@ -19,6 +19,7 @@ import json
 import math
 import os
 import re
+import struct
 import subprocess
 import sys
 import tempfile
@@ -85,6 +86,21 @@ def region_of(shape, verts, face, offset):
     n = cross([b[k] - a[k] for k in range(3)], [d[k] - a[k] for k in range(3)])
     nz = n[2] / (math.dist((0, 0, 0), n) or 1)
     return "facing up" if nz > 0.5 else "facing down" if nz < -0.5 else "facing sideways"
+
+
+def read_xyz_pcd(path):
+    """The points [(x, y, z)] of a binary x y z float PCD (cloud_writer's)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    marker = b"DATA binary\n"
+    if marker not in data:
+        raise RuntimeError(f"{path}: not a binary PCD")
+    body = data.index(marker) + len(marker)
+    header = data[:body].decode("ascii")
+    count = re.search(r"^POINTS (\d+)$", header, re.M)
+    if "FIELDS x y z\n" not in header or "TYPE F F F\n" not in header or not count:
+        raise RuntimeError(f"{path}: not an x y z float PCD")
+    return list(struct.iter_unpack("<fff", data[body:body + 12 * int(count.group(1))]))
 
 
 def write_ply(path, verts, faces):

@@ -154,3 +154,43 @@ def test_a_variant_set_on_every_run_is_kept_apart_and_named(tmp_path):
         rows(tmp_path / "variant/results.csv")[0]["chamfer_est_to_gt"]
     assert "--methods all_sides --set fit.reselect_growth=0 --set fit.offset_mm=3`" in \
         (tmp_path / "variant/results.md").read_text()
+
+
+def write_binary_pcd(path, points):
+    import struct
+    path.write_bytes(("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                      f"WIDTH {len(points)}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(points)}\n"
+                      "DATA binary\n").encode() + b"".join(struct.pack("<fff", *p) for p in points))
+
+
+def test_coverage_by_distance_to_the_touches_tells_a_part_never_touched_from_one_missed_between_touches(tmp_path):
+    sys.path.insert(0, str(SCRIPT.parent))
+    from touch_distance_coverage import band_table, samples
+    points, _ = samples("sphere", 30000, seed=7)
+    centre_z = points[:, 2].mean()
+    top = [tuple(p) for p in points if p[2] > centre_z]
+    whole, upper = tmp_path / "whole", tmp_path / "upper"
+    for run, surface in ((whole, [tuple(p) for p in points]), (upper, top)):
+        run.mkdir()
+        write_binary_pcd(run / "sphere_touch_points.pcd", top)
+        write_binary_pcd(run / "sphere_surface.pcd", surface)
+    # Touched on its upper half (a 60 mm sphere): the faces looking up lie within 3 mm of a
+    # touch, those looking down (more than 30 degrees below the equator) 8 mm or more from one.
+    t = band_table("sphere", [str(whole)], 2.0, 20000, seed=1)
+    assert t[("facing up", 0)][0] > 0.99 and t[("facing up", 0)][1] == 1.0, t
+    assert t[("facing down", 2)][0] + t[("facing down", 3)][0] > 0.95, t
+    assert t[("facing down", 2)][1] == 1.0 and t[("facing down", 3)][1] == 1.0, t
+    # A surface that stops where the touches stop covers nothing far from them.
+    t = band_table("sphere", [str(upper)], 2.0, 20000, seed=1)
+    assert t[("facing up", 0)][1] == 1.0 and t[("facing down", 2)][1] == 0.0 and t[("facing down", 3)][1] == 0.0, t
+    # Two runs: their mean.
+    t = band_table("sphere", [str(whole), str(upper)], 2.0, 20000, seed=1)
+    assert t[("facing down", 3)][1] == 0.5, t
+    script = SCRIPT.parent / "touch_distance_coverage.py"
+    r = subprocess.run([sys.executable, str(script), "--shape", "sphere", "--run", str(whole)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0 and "| facing down |" in r.stdout, r.stderr
+    (whole / "sphere_surface.pcd").unlink()
+    r = subprocess.run([sys.executable, str(script), "--shape", "sphere", "--run", str(whole)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "no sphere_surface.pcd" in r.stderr, r.stderr

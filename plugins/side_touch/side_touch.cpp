@@ -112,6 +112,13 @@ class SideTouch final : public Stage {
   // `first` keeps the first refusal of the touch being chosen.
   std::optional<simulation::ReachRefusal> refused(const Eigen::Isometry3d& frame, std::optional<double> intended_mm,
                                                   std::optional<simulation::ReachRefusal>& first) {
+    // Once the touch's first refusal has its reason, a refusal needs none:
+    // an approach tilted past the robot's limit (most of those from below)
+    // is refused without building its view.
+    if (first && simulation::tilts_beyond_reach(frame, limits_)) {
+      ++refused_candidates_;
+      return first;
+    }
     // Only the gel's disc round the approach is read (a millimetre to spare).
     const simulation::ApproachView view(object_, frame.inverse(), limits_.gel_radius_mm + 1.0);
     const auto why = simulation::refuse_approach(view, frame, {0, 0}, intended_mm, limits_);

@@ -38,6 +38,12 @@ const char* to_string(ReachRefusal reason) {
   return "?";
 }
 
+bool tilts_beyond_reach(const Eigen::Isometry3d& object_from_press, const ApproachLimits& limits) {
+  const double down = object_from_press.linear()(2, 2);  // -d.z of the approach direction d
+  const double tilt_deg = std::acos(std::clamp(down, -1.0, 1.0)) * 180.0 / M_PI;
+  return tilt_deg > limits.max_tilt_deg + 1e-9;
+}
+
 std::optional<ReachRefusal> refuse_approach(const ApproachView& view, const Eigen::Isometry3d& object_from_press,
                                             const Eigen::Vector2d& xy_mm, std::optional<double> intended_mm,
                                             const ApproachLimits& limits) {
@@ -59,8 +65,7 @@ std::optional<ReachRefusal> refuse_approach(const ApproachView& view, const Eige
       std::min(centre_z - limits.standoff_mm * d.z(), centre_z + limits.press_mm * d.z()) - below_centre;
   constexpr double kTableSlackMm = 1e-6;
   if (lowest < -kTableSlackMm) return ReachRefusal::Table;
-  const double tilt_deg = std::acos(std::clamp(-d.z(), -1.0, 1.0)) * 180.0 / M_PI;
-  if (tilt_deg > limits.max_tilt_deg + 1e-9) return ReachRefusal::Workspace;
+  if (tilts_beyond_reach(object_from_press, limits)) return ReachRefusal::Workspace;
   if (stop - intended_mm.value_or(surface) > limits.tolerance_mm) return ReachRefusal::Object;
   return std::nullopt;
 }

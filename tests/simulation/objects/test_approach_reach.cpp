@@ -85,6 +85,46 @@ TEST(ApproachReach, ATiltBeyondTheRobotsIsRefusedForTheWorkspace) {
   EXPECT_STREQ(simulation::to_string(*refused), "workspace");
 }
 
+// What side_touch relies on to skip building a view: a touch tilted past the
+// robot's limit is refused whatever it meets (for the tilt, or for a reason
+// checked before it), and one within the limit is never refused for it.
+TEST(ApproachReach, EveryApproachTiltedPastTheLimitIsRefused) {
+  TempDir dir;
+  const auto mesh = placed_torus(dir);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> offset(-60.0, 60.0);
+  int tilted = 0, within = 0, refused_within = 0;
+  for (const double max_tilt : {30.0, 90.0, 120.0}) {
+    simulation::ApproachLimits limits;
+    limits.max_tilt_deg = max_tilt;
+    for (int i = 0; i < 150; ++i) {
+      const Eigen::Vector3d d(normal(rng), normal(rng), normal(rng));
+      const Eigen::Vector3d at = kOnTable + Eigen::Vector3d(offset(rng), offset(rng), 0.5 * offset(rng));
+      const Eigen::Isometry3d frame = simulation::approach_frame(at, d);
+      const simulation::ApproachView view(mesh, frame.inverse(), limits.gel_radius_mm + 1.0);
+      const auto why = simulation::refuse_approach(view, frame, {0, 0}, std::nullopt, limits);
+      const double tilt = std::acos(std::clamp(-d.normalized().z(), -1.0, 1.0)) * 180.0 / M_PI;
+      if (simulation::tilts_beyond_reach(frame, limits)) {
+        ++tilted;
+        EXPECT_GT(tilt, max_tilt - 1e-6);
+        EXPECT_TRUE(why) << "direction " << d.transpose() << " at " << at.transpose();
+      } else {
+        ++within;
+        EXPECT_LE(tilt, max_tilt + 1e-6);
+        if (why) {  // no workspace box: within the tilt limit, never for the workspace
+          ++refused_within;
+          EXPECT_NE(*why, simulation::ReachRefusal::Workspace) << "direction " << d.transpose();
+        }
+      }
+    }
+  }
+  // Both kinds, and refusals of the others for other reasons, were met.
+  EXPECT_GT(tilted, 100);
+  EXPECT_GT(within, 100);
+  EXPECT_GT(refused_within, 10);
+}
+
 // The press goes on past first contact: a press onto the table beside the
 // object would push the gel into it.
 TEST(ApproachReach, APressIntoTheTableIsRefusedForTheTable) {

@@ -49,6 +49,12 @@ struct ApproachLimits {
   std::optional<Eigen::AlignedBox2d> workspace_xy_mm;  // the target's (x, y) in the object's frame
 };
 
+// True when the press along `object_from_press`'s -z tilts further from
+// straight down than limits.max_tilt_deg: refuse_approach refuses such a
+// touch whatever the object (for the tilt, or for a reason it checks first),
+// so a planner that needs no reason may skip building its view.
+bool tilts_beyond_reach(const Eigen::Isometry3d& object_from_press, const ApproachLimits& limits);
+
 // Checks a touch at `xy_mm` of the press frame that `view` shows (built with
 // `object_from_press` inverted), meant to meet the surface at height
 // `intended_mm` there (not set: the first surface along the approach, as

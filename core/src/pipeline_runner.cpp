@@ -131,7 +131,11 @@ class Runner {
                          (names.empty() ? "none" : names) + ")");
       }
       (*stage)->wanted_outputs.insert(port);
-      (*stage)->read_in_loop.insert(port);  // every call's value may be the one captured
+      // Every call's value is handed back when each call's is kept, or each
+      // frame's when streaming; otherwise the last alone, as a stage after
+      // the loop reads it, so a simulator renders only the frame that ends
+      // a touch.
+      if (options_.capture_every_call || stream_) (*stage)->read_in_loop.insert(port);
     }
   }
 

@@ -137,6 +137,18 @@ def test_dense_maps_and_colour_pairs_are_arrays(source):
     assert 0 < len(r.outputs["cloud.cloud"]) <= ((mask > 0) & (valid > 0)).sum()
 
 
+def test_a_frame_asked_for_inside_a_touch_is_rendered_once_as_the_cli_renders_it(source, cli, tmp_path):
+    # Only the touch's last colour pair is handed back, so only the frame that ends the touch is
+    # rendered, as for the stages after the loop: the same run as the CLI's, bit for bit.
+    pipeline = source / "pipelines/simulate_touch_dense.yaml"
+    r = touchcloud.run(str(pipeline), seed=1, out=str(tmp_path / "py"), outputs=["sim.colour_frame", "cloud.cloud"])
+    assert r.metrics["sim.frames_rendered"]["value"] == 1 < r.metrics["sim.frames_simulated"]["value"]
+    assert r.outputs["sim.colour_frame"]["left"].shape[2] == 3
+    subprocess.run([str(cli), "run", str(pipeline), "--seed", "1", "--out", str(tmp_path / "cli"), "-q"],
+                   check=True, capture_output=True)
+    assert (tmp_path / "py/dense_contact_base.pcd").read_bytes() == (tmp_path / "cli/dense_contact_base.pcd").read_bytes()
+
+
 def test_metrics_carry_their_declarations_and_artifacts_their_roles(source, tmp_path):
     r = touchcloud.run(str(source / "pipelines/fox_mask_active.yaml"), seed=1, out=str(tmp_path),
                        set={"explore.max_iterations": 3, "surface.resolution": [40, 40]})

@@ -194,3 +194,21 @@ def test_coverage_by_distance_to_the_touches_tells_a_part_never_touched_from_one
     r = subprocess.run([sys.executable, str(script), "--shape", "sphere", "--run", str(whole)],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "no sphere_surface.pcd" in r.stderr, r.stderr
+
+
+def test_a_touch_on_one_face_of_a_thin_wall_does_not_count_as_near_the_other_face(tmp_path):
+    sys.path.insert(0, str(SCRIPT.parent))
+    from touch_distance_coverage import band_table, samples
+    points, regions = samples("mug", 30000, seed=7)
+    outer = [tuple(p) for p, r in zip(points, regions) if r == "outer wall"]
+    run = tmp_path / "outer"
+    run.mkdir()
+    write_binary_pcd(run / "mug_touch_points.pcd", outer)
+    write_binary_pcd(run / "mug_surface.pcd", outer)
+    # Touched all over its outer wall: the inner wall, 4 mm inside, lies within 8 mm of a touch...
+    t = band_table("mug", [str(run)], 2.0, 20000, seed=1)
+    assert t[("inner wall", 0)][0] + t[("inner wall", 1)][0] > 0.99, t
+    # ...but no touch on its side reached it: beyond the last band, and never covered.
+    t = band_table("mug", [str(run)], 2.0, 20000, seed=1, same_side=True)
+    assert t[("inner wall", 3)][0] > 0.99 and t[("inner wall", 3)][1] < 0.01, t
+    assert t[("outer wall", 0)][0] > 0.99 and t[("outer wall", 0)][1] > 0.99, t

@@ -83,7 +83,7 @@ def band_table(shape, runs, fscore_mm, count, seed, same_side=False):
     """{(region, band index): (share of the region's area, coverage)} averaged over `runs`; with
     `same_side` by the distance to the nearest touched point on the sample's side of the shape."""
     points, regions, normals = samples(shape, count, seed, normals=True)
-    sample_tree = cKDTree(points)
+    sample_tree = cKDTree(points) if same_side else None
     sums = {}
     for run in runs:
         touched = np.asarray(read_xyz_pcd(os.path.join(run, f"{shape}_touch_points.pcd")))
@@ -128,8 +128,10 @@ def main():
     for same_side, which in ((False, "the nearest touched point"),
                              (True, "the nearest touched point on the same side (normals within 60 degrees)")):
         table = band_table(args.shape, args.run, args.fscore_mm, args.samples, seed=1, same_side=same_side)
-        print(f"{'' if not same_side else chr(10)}Share of each region's area by distance to {which}, and its "
-              f"coverage at {args.fscore_mm:g} mm ({len(args.run)} run(s)):\n")
+        if same_side:
+            print()
+        print(f"Share of each region's area by distance to {which}, and its coverage at "
+              f"{args.fscore_mm:g} mm ({len(args.run)} run(s)):\n")
         print("| region | " + " | ".join(bands) + " |\n|---|" + "---|" * len(bands))
         for region in sorted({r for r, _ in table}):
             cells = []

@@ -35,9 +35,9 @@ BANDS_MM = [0.0, 3.0, 8.0, 15.0, float("inf")]
 SAME_SIDE_COS = 0.5  # outward normals within 60 degrees: the same side of the shape
 
 
-def samples(shape, count, seed, normals=False):
-    """`count` points uniform by area on the placed mesh, and each one's region
-    (and, with `normals`, its triangle's outward unit normal)."""
+def samples(shape, count, seed):
+    """`count` points uniform by area on the placed mesh, each one's region and its triangle's
+    outward unit normal."""
     verts, faces, offset = placed_mesh(shape)
     v = np.asarray(verts)
     tri = np.asarray(faces)
@@ -50,8 +50,6 @@ def samples(shape, count, seed, normals=False):
     u[flip], w[flip] = 1 - u[flip], 1 - w[flip]
     points = a[which] + u[:, None] * (b - a)[which] + w[:, None] * (c - a)[which]
     names = np.array([region_of(shape, verts, f, offset) for f in faces], dtype=object)
-    if not normals:
-        return points, names[which]
     n = np.cross(b - a, c - a)[which]
     return points, names[which], n / np.linalg.norm(n, axis=1)[:, None]
 
@@ -79,37 +77,41 @@ def same_side_distance(points, normals, touched, touched_normals, bins=256):
     return out
 
 
-def band_table(shape, runs, fscore_mm, count, seed, same_side=False):
-    """{(region, band index): (share of the region's area, coverage)} averaged over `runs`; with
-    `same_side` by the distance to the nearest touched point on the sample's side of the shape."""
-    points, regions, normals = samples(shape, count, seed, normals=True)
-    sample_tree = cKDTree(points) if same_side else None
-    sums = {}
+def band_tables(shape, runs, fscore_mm, count, seed):
+    """{same_side: {(region, band index): (share of the region's area, coverage)}} averaged over
+    `runs`, banded by the distance to the nearest touched point anywhere (False) and to the nearest
+    on the sample's side of the shape (True)."""
+    points, regions, normals = samples(shape, count, seed)
+    sample_tree = cKDTree(points)
+    sums = {False: {}, True: {}}
     for run in runs:
         touched = np.asarray(read_xyz_pcd(os.path.join(run, f"{shape}_touch_points.pcd")))
         surface = np.asarray(read_xyz_pcd(os.path.join(run, f"{shape}_surface.pcd")))
         if len(touched) == 0 or len(surface) == 0:
             raise RuntimeError(f"{run}: no touched points or no surface points")
-        if same_side:
-            touched_normals = normals[sample_tree.query(touched)[1]]
-            near = same_side_distance(points, normals, touched, touched_normals)
-        else:
-            near = cKDTree(touched).query(points)[0]
         covered = cKDTree(surface).query(points)[0] <= fscore_mm
-        # No touched point on its side at all: the farthest band.
-        band = np.minimum(np.searchsorted(BANDS_MM, near, side="right") - 1, len(BANDS_MM) - 2)
-        for region in sorted(set(regions)):
-            mine = regions == region
-            for k in range(len(BANDS_MM) - 1):
-                cell = mine & (band == k)
-                share = cell.sum() / mine.sum()
-                coverage = covered[cell].mean() if cell.any() else float("nan")
-                s = sums.setdefault((region, k), [0.0, 0.0, 0])
-                s[0] += share
-                if cell.any():
-                    s[1] += coverage
-                    s[2] += 1
-    return {key: (s[0] / len(runs), s[1] / s[2] if s[2] else float("nan")) for key, s in sums.items()}
+        touched_normals = normals[sample_tree.query(touched)[1]]
+        nearest = {False: cKDTree(touched).query(points)[0],
+                   True: same_side_distance(points, normals, touched, touched_normals)}
+        for same_side, near in nearest.items():
+            # No touched point on its side at all: the farthest band.
+            band = np.minimum(np.searchsorted(BANDS_MM, near, side="right") - 1, len(BANDS_MM) - 2)
+            for region in sorted(set(regions)):
+                mine = regions == region
+                for k in range(len(BANDS_MM) - 1):
+                    cell = mine & (band == k)
+                    s = sums[same_side].setdefault((region, k), [0.0, 0.0, 0])
+                    s[0] += cell.sum() / mine.sum()
+                    if cell.any():
+                        s[1] += covered[cell].mean()
+                        s[2] += 1
+    return {side: {key: (s[0] / len(runs), s[1] / s[2] if s[2] else float("nan")) for key, s in table.items()}
+            for side, table in sums.items()}
+
+
+def band_table(shape, runs, fscore_mm, count, seed, same_side=False):
+    """One of band_tables' two tables."""
+    return band_tables(shape, runs, fscore_mm, count, seed)[same_side]
 
 
 def main():
@@ -125,9 +127,10 @@ def main():
             if not os.path.exists(os.path.join(run, f"{args.shape}_{name}.pcd")):
                 parser.error(f"--run {run}: no {args.shape}_{name}.pcd there")
     bands = [f"{lo:g}-{hi:g} mm" if hi != float("inf") else f"over {lo:g} mm" for lo, hi in zip(BANDS_MM, BANDS_MM[1:])]
+    tables = band_tables(args.shape, args.run, args.fscore_mm, args.samples, seed=1)
     for same_side, which in ((False, "the nearest touched point"),
                              (True, "the nearest touched point on the same side (normals within 60 degrees)")):
-        table = band_table(args.shape, args.run, args.fscore_mm, args.samples, seed=1, same_side=same_side)
+        table = tables[same_side]
         if same_side:
             print()
         print(f"Share of each region's area by distance to {which}, and its coverage at "

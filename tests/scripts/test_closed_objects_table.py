@@ -166,7 +166,7 @@ def write_binary_pcd(path, points):
 def test_coverage_by_distance_to_the_touches_tells_a_part_never_touched_from_one_missed_between_touches(tmp_path):
     sys.path.insert(0, str(SCRIPT.parent))
     from touch_distance_coverage import band_table, samples
-    points, _ = samples("sphere", 30000, seed=7)
+    points, _, _ = samples("sphere", 30000, seed=7)
     centre_z = points[:, 2].mean()
     top = [tuple(p) for p in points if p[2] > centre_z]
     whole, upper = tmp_path / "whole", tmp_path / "upper"
@@ -199,7 +199,7 @@ def test_coverage_by_distance_to_the_touches_tells_a_part_never_touched_from_one
 def test_a_touch_on_one_face_of_a_thin_wall_does_not_count_as_near_the_other_face(tmp_path):
     sys.path.insert(0, str(SCRIPT.parent))
     from touch_distance_coverage import band_table, samples
-    points, regions = samples("mug", 30000, seed=7)
+    points, regions, _ = samples("mug", 30000, seed=7)
     outer = [tuple(p) for p, r in zip(points, regions) if r == "outer wall"]
     run = tmp_path / "outer"
     run.mkdir()

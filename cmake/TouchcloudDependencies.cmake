@@ -5,7 +5,7 @@
 #   yaml-cpp    pipeline and scene files, with line/column for error messages
 #   CLI11       the touchcloud command line
 #   nlohmann_json  summary.json and --json output
-#   nanoflann   KD-tree over marker pixels (stereo matching and tracking)
+#   nanoflann   KD-tree over marker pixels (stereo matching and tracking) and touched points (local quadrics)
 #   OpenCV, Ceres, FFTW: looked up by the libraries and plugins that need them
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 # PCL pulls in VTK, whose MPI target needs the C language enabled (project()).

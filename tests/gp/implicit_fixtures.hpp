@@ -86,6 +86,35 @@ struct TorusObject {
   }
 };
 
+// A cup's wall about the z axis between radii 36 and 40 mm (a mug's): palm
+// patches 6 mm in radius, markers `step_mm` apart, on the outer face every
+// `outer_deg` degrees at `heights` (mm), and on the inner face, pressed from
+// the hollow, every 60 degrees at 45 mm only.
+struct CupWall {
+  double inner_mm = 36, outer_mm = 40;
+
+  gp::ImplicitTouch touch(double deg, double z_mm, bool inner, double step_mm) const {
+    const double r = inner ? inner_mm : outer_mm, a = deg * std::numbers::pi / 180;
+    std::vector<Eigen::Vector3d> points;
+    for (const Eigen::Vector2d& st : footprint(6.0, step_mm))
+      points.emplace_back(r * std::cos(a + st[0] / r), r * std::sin(a + st[0] / r), z_mm + st[1]);
+    const Eigen::Vector3d radial(std::cos(a), std::sin(a), 0);
+    return touch_with_palm_normal(points, inner ? Eigen::Vector3d(-radial) : radial);
+  }
+  std::vector<gp::ImplicitTouch> touches(double step_mm, double outer_deg = 15,
+                                         const std::vector<double>& heights = {25, 45, 65}) const {
+    std::vector<gp::ImplicitTouch> out;
+    for (double deg = 0; deg < 360; deg += outer_deg)
+      for (double z : heights) out.push_back(touch(deg, z, false, step_mm));
+    for (double deg = 0; deg < 360; deg += 60) out.push_back(touch(deg, 45.0, true, step_mm));
+    return out;
+  }
+  static Eigen::Vector3d at(double r_mm, double deg, double z_mm) {
+    const double a = deg * std::numbers::pi / 180;
+    return {r_mm * std::cos(a), r_mm * std::sin(a), z_mm};
+  }
+};
+
 inline Eigen::MatrixX3d one_row(const Eigen::Vector3d& p) { return p.transpose(); }
 
 // Where a model's mean crosses 0 between a (negative) and b (positive), by

@@ -25,6 +25,12 @@
 // stands on, which no touch reaches. The `implicit` and `surface` outputs
 // stay the model itself.
 //
+// surface: gp_mean meshes the GP's mean; local_quadrics meshes local
+// quadrics of the touched points where they reach and the GP's mean elsewhere
+// (quadric_mesh.hpp), for thin walls the GP's smooth field thickens (a mug's).
+// Either way the `implicit` and `surface` outputs, which the planners read,
+// are the GP.
+//
 // The `surface` output is the model as a press from above meets it
 // (top_surface.hpp), for next_touch to choose where it is least certain; the
 // `implicit` output is the model itself, for side_touch's touches from any
@@ -35,6 +41,7 @@
 #include <variant>
 #include <vector>
 
+#include "quadric_mesh.hpp"
 #include "top_surface.hpp"
 
 #include "touchcloud/gp/held_implicit_model.hpp"
@@ -51,6 +58,7 @@
 namespace touchcloud {
 
 enum class ImplicitForm { exact, sparse, exact_then_sparse };
+enum class MeshedSurface { gp_mean, local_quadrics };
 
 class GpisSurface final : public Stage {
   gp::ImplicitSurfaceOptions options_;
@@ -68,6 +76,9 @@ class GpisSurface final : public Stage {
   // Shared with the `surface` output until the next touch.
   std::variant<std::shared_ptr<gp::ImplicitSurface>, std::shared_ptr<gp::SparseImplicitSurface>> model_;
   std::vector<gp::ImplicitTouch> touches_;  // exact_then_sparse, while exact: for the sparse form's fit
+  MeshedSurface meshed_ = MeshedSurface::gp_mean;
+  gp::LocalQuadricOptions quadric_;
+  Eigen::MatrixX3d touched_, outward_;  // local_quadrics: every touched point and its palm's normal
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
   SurfaceModelPtr surface_;
@@ -116,6 +127,16 @@ class GpisSurface final : public Stage {
     p.add("table_z_mm", table_z_mm_).unit("mm")
         .doc("height of the table the object rests on, base frame (the simulator's table: 0): the mesh and the cloud "
              "out stop there and are closed by it where the surface's inside reaches it; not set: no table");
+    p.add("surface", meshed_, MeshedSurface::gp_mean,
+          {{"gp_mean", MeshedSurface::gp_mean}, {"local_quadrics", MeshedSurface::local_quadrics}})
+        .doc("what is meshed: the GP's mean, or local quadrics of the touched points where they reach "
+             "(quadric_reach_mm) and the GP's mean elsewhere, for thin walls the GP thickens; the planners read the "
+             "GP either way");
+    p.add("quadric_reach_mm", quadric_.reach_mm, 16.0).unit("mm").above(0.0)
+        .doc("local_quadrics: how far across its normal a patch's quadric stands for the surface");
+    p.add("free_radius_mm", quadric_.free_radius_mm, 7.0).unit("mm").above(0.0)
+        .doc("local_quadrics: triangles in front of a touched patch, within this of its centre across its normal "
+             "(where the gel lay), are dropped");
     p.add("mesh", mesh_path_).output_file()
         .doc("PLY file in the output folder for the last mesh, with each vertex's variance (mm^2); not set: none");
   }
@@ -129,6 +150,8 @@ class GpisSurface final : public Stage {
     options_.max_training_points = exact_max_points_;
     warned_below_table_ = false;
     touches_.clear();
+    touched_.resize(0, 3);
+    outward_.resize(0, 3);
     if (form_ != ImplicitForm::sparse)
       model_ = std::make_shared<gp::ImplicitSurface>(options_);
     else
@@ -152,6 +175,9 @@ class GpisSurface final : public Stage {
     ports.metric("noise_variance_mm2", "mm^2", "noise variance of the signed distance");
     ports.metric("jitter_mm2", "mm^2", "jitter added to the covariance's diagonal to factorise it");
     ports.metric("mesh_triangles", "", "triangles of the zero level set");
+    ports.metric("quadric_patches", "", "local_quadrics: patches fitted to the touched points");
+    ports.metric("dropped_jump_triangles", "", "local_quadrics: triangles dropped where the field jumps");
+    ports.metric("dropped_free_space_triangles", "", "local_quadrics: triangles dropped where a gel lay");
     ports.metric("max_vertex_variance_mm2", "mm^2", "largest variance at a vertex of the last mesh").final();
     ports.metric("mean_vertex_variance_mm2", "mm^2", "mean variance over the last mesh's vertices").final();
     ports.artifact(ArtifactRole::reconstructed_surface, "the last mesh (PLY) with per-vertex variance, with mesh set");
@@ -188,12 +214,21 @@ class GpisSurface final : public Stage {
     const Eigen::MatrixX3d& contacts = model->contact_points();
     const gp::SampleGrid grid = table_z_mm_ ? gp::grid_around(contacts, margin_mm_, static_cast<int>(cells_), *table_z_mm_)
                                             : gp::grid_around(contacts, margin_mm_, static_cast<int>(cells_));
-    Eigen::VectorXd values = model->mean(grid.sample_points(), static_cast<int>(threads_));
-    if (table_z_mm_) {
-      warn_of_points_below_table(contacts, ctx);
-      gp::clip_above_table(grid, *table_z_mm_, values);
+    if (table_z_mm_) warn_of_points_below_table(contacts, ctx);
+    if (meshed_ == MeshedSurface::local_quadrics) {
+      const gp::LocalQuadricSurface quadrics(touched_, outward_, quadric_);
+      QuadricMeshCounts dropped;
+      mesh_ = local_quadric_mesh(
+          grid, quadrics, [&](const Eigen::MatrixX3d& q) { return model->mean(q, static_cast<int>(threads_)); },
+          table_z_mm_, static_cast<int>(threads_), dropped);
+      ctx.metric("quadric_patches", static_cast<double>(quadrics.patches()));
+      ctx.metric("dropped_jump_triangles", static_cast<double>(dropped.jumps));
+      ctx.metric("dropped_free_space_triangles", static_cast<double>(dropped.free_space));
+    } else {
+      Eigen::VectorXd values = model->mean(grid.sample_points(), static_cast<int>(threads_));
+      if (table_z_mm_) gp::clip_above_table(grid, *table_z_mm_, values);
+      mesh_ = gp::zero_level_set(grid, values);
     }
-    mesh_ = gp::zero_level_set(grid, values);
     if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
     ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
     if (io.wants("surface")) {
@@ -250,6 +285,21 @@ class GpisSurface final : public Stage {
     model_ = std::move(sparse);
   }
 
+  // The touched points and the side each touch came from (its palm's normal;
+  // without one, away from the centroid of all points touched).
+  void keep_for_quadrics(const gp::ImplicitTouch& touch) {
+    const Eigen::Index from = touched_.rows(), k = touch.points_mm.rows();
+    touched_.conservativeResize(from + k, 3);
+    touched_.bottomRows(k) = touch.points_mm;
+    outward_.conservativeResize(from + k, 3);
+    if (touch.normals.rows() == k) {
+      outward_.bottomRows(k) = touch.normals;
+    } else {
+      const Eigen::RowVector3d centroid = touched_.colwise().mean();
+      outward_.bottomRows(k) = touch.points_mm.rowwise() - centroid;
+    }
+  }
+
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud) throw RunError("no cloud to add");
@@ -269,6 +319,7 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = -(*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
+    if (meshed_ == MeshedSurface::local_quadrics) keep_for_quadrics(touch);
     if (form_ == ImplicitForm::exact_then_sparse) switch_to_sparse_beyond_exact(touch, ctx);
     std::visit([&](auto& model) { update_and_mesh(model, touch, io, ctx); }, model_);
     auto out = std::make_shared<PointCloud>();

@@ -3,7 +3,10 @@
 // sampled on the zero level set and lies on the sphere; the last mesh is
 // written as PLY with each vertex's variance. A first touch without a pose
 // (no side known) and a run without points are refused.
+#include <cmath>
 #include <fstream>
+#include <map>
+#include <numbers>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -267,4 +270,38 @@ TEST_F(GpisSurfaceStage, SurfaceOutIsTheSphereSeenFromAboveWithItsVariance) {
   // Taken after 31 touches, the first view still answers for those 31.
   ASSERT_TRUE(first);
   EXPECT_LT(first->training_size(), static_cast<std::size_t>(h.metric("training_points")));
+}
+
+// A cup's wall 4 mm thick, touched every 30 degrees outside and every 60
+// degrees inside, all at 45 mm (test::CupWall, markers 2 mm apart): beside
+// the inner touches the GP's mean puts the inner face into the hollow;
+// surface: local_quadrics keeps it on the face. Scored on the cloud's points at the
+// inner touches' height (40-50 mm) whose angle lies 10-20 degrees from an
+// inner touch (0-6 mm beyond its patch): the share within 1 mm of a face.
+TEST_F(GpisSurfaceStage, LocalQuadricsKeepAThinWallThinBetweenItsInnerTouches) {
+  const test::CupWall wall;
+  const auto on_a_face = [&](const PointCloud& cloud) {
+    std::size_t near = 0, counted = 0;
+    for (const auto& p : cloud.points) {
+      const double deg = std::fmod(std::atan2(p.y, p.x) * 180 / std::numbers::pi + 360, 60.0);
+      if (p.z < 40 || p.z > 50 || std::min(deg, 60 - deg) < 10 || std::min(deg, 60 - deg) > 20) continue;
+      const double r = std::hypot(p.x, p.y);
+      ++counted;
+      if (std::abs(r - wall.inner_mm) < 1 || std::abs(r - wall.outer_mm) < 1) ++near;
+    }
+    EXPECT_GT(counted, 50u);
+    return static_cast<double>(near) / static_cast<double>(std::max<std::size_t>(counted, 1));
+  };
+  std::map<std::string, double> share;
+  for (const std::string surface : {"gp_mean", "local_quadrics"}) {
+    test::StageHarness h("gpis_surface", {{"kernel", std::string("matern52")}, {"cells", std::int64_t{48}},
+                                          {"samples", std::int64_t{20000}}, {"surface", surface}},
+                         "fit");
+    h.configure();
+    const CloudConstPtr out = touch_all(h, wall.touches(2.0, 30, {45}));
+    share[surface] = on_a_face(*out);
+    if (surface == "local_quadrics") EXPECT_GT(h.metric("quadric_patches"), 100);
+  }
+  EXPECT_GT(share["local_quadrics"], 0.93);
+  EXPECT_LT(share["gp_mean"], 0.6);
 }

@@ -78,7 +78,8 @@ class GpisSurface final : public Stage {
   std::vector<gp::ImplicitTouch> touches_;  // exact_then_sparse, while exact: for the sparse form's fit
   MeshedSurface meshed_ = MeshedSurface::gp_mean;
   gp::LocalQuadricOptions quadric_;
-  Eigen::MatrixX3d touched_, outward_;  // local_quadrics: every touched point and its palm's normal
+  Eigen::MatrixX3d touched_, outward_;  // local_quadrics: every touched point and its side's normal
+  std::size_t touches_kept_ = 0;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
   SurfaceModelPtr surface_;
@@ -152,6 +153,7 @@ class GpisSurface final : public Stage {
     touches_.clear();
     touched_.resize(0, 3);
     outward_.resize(0, 3);
+    touches_kept_ = 0;
     if (form_ != ImplicitForm::sparse)
       model_ = std::make_shared<gp::ImplicitSurface>(options_);
     else
@@ -285,19 +287,18 @@ class GpisSurface final : public Stage {
     model_ = std::move(sparse);
   }
 
-  // The touched points and the side each touch came from (its palm's normal;
-  // without one, away from the centroid of all points touched).
-  void keep_for_quadrics(const gp::ImplicitTouch& touch) {
+  // The touched points and the side each touch came from: its palm's
+  // normal, or without one what the GP takes (gp::checked_touch_normals).
+  void keep_for_quadrics(const gp::ImplicitTouch& touch, const RunContext& ctx) {
     const Eigen::Index from = touched_.rows(), k = touch.points_mm.rows();
+    bool estimated = false;
+    const Eigen::MatrixX3d side = gp::checked_touch_normals(
+        touch, touched_, "implicit surface, touch " + std::to_string(run_touch(ctx, touches_kept_ + 1)), estimated);
+    ++touches_kept_;
     touched_.conservativeResize(from + k, 3);
     touched_.bottomRows(k) = touch.points_mm;
     outward_.conservativeResize(from + k, 3);
-    if (touch.normals.rows() == k) {
-      outward_.bottomRows(k) = touch.normals;
-    } else {
-      const Eigen::RowVector3d centroid = touched_.colwise().mean();
-      outward_.bottomRows(k) = touch.points_mm.rowwise() - centroid;
-    }
+    outward_.bottomRows(k) = side;
   }
 
   void on_process(StageIO& io, RunContext& ctx) override {
@@ -319,7 +320,7 @@ class GpisSurface final : public Stage {
       const Eigen::Vector3d palm_normal = -(*tactile)->pose.base_from_sensor.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
     }
-    if (meshed_ == MeshedSurface::local_quadrics) keep_for_quadrics(touch);
+    if (meshed_ == MeshedSurface::local_quadrics) keep_for_quadrics(touch, ctx);
     if (form_ == ImplicitForm::exact_then_sparse) switch_to_sparse_beyond_exact(touch, ctx);
     std::visit([&](auto& model) { update_and_mesh(model, touch, io, ctx); }, model_);
     auto out = std::make_shared<PointCloud>();

@@ -17,6 +17,12 @@
 //                             (touchcloud/planning/side_choice.hpp: 150
 //                             candidates of 20,000 points on the sphere,
 //                             each with its normal, variance and footprint)
+//   BM_LocalQuadricBuild/n    local quadric patches (gpis_surface's
+//                             surface: local_quadrics) fitted to n touched
+//                             points of the sphere, normals included
+//   BM_LocalQuadricField/n    their signed distance on the 48-cell grid
+//                             around the points (the shipped pipelines'
+//                             cells), on one thread
 //   BM_LevelSetMesh/c         VTK flying edges on a c^3 grid of a sphere's
 //                             signed distance (VTK's SMP backend, TBB on
 //                             Debian, uses the cores the process may: run
@@ -31,6 +37,7 @@
 #include "touchcloud/gp/held_implicit_model.hpp"
 #include "touchcloud/gp/implicit_surface.hpp"
 #include "touchcloud/gp/level_set_mesh.hpp"
+#include "touchcloud/gp/local_quadric_surface.hpp"
 #include "touchcloud/gp/sparse_implicit_surface.hpp"
 #include "touchcloud/planning/side_choice.hpp"
 
@@ -148,6 +155,37 @@ void BM_SparseTouchAndChoice(benchmark::State& state) {
   state.counters["candidates"] = static_cast<double>(candidates);
 }
 BENCHMARK(BM_SparseTouchAndChoice)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// At least `points` touched points of the sphere and their palm normals.
+std::pair<Eigen::MatrixX3d, Eigen::MatrixX3d> touched_points(Eigen::Index points) {
+  const int touches = static_cast<int>((points + 20) / 21);
+  Eigen::MatrixX3d p(21 * touches, 3), n(21 * touches, 3);
+  for (int i = 0; i < touches; ++i) {
+    const gp::ImplicitTouch t = sphere_touch(i, touches);
+    p.middleRows(21 * i, 21) = t.points_mm;
+    n.middleRows(21 * i, 21) = t.normals;
+  }
+  return {p, n};
+}
+
+void BM_LocalQuadricBuild(benchmark::State& state) {
+  const auto [points, normals] = touched_points(state.range(0));
+  std::size_t patches = 0;
+  for (auto _ : state) patches = gp::LocalQuadricSurface(points, normals).patches();
+  state.counters["points"] = static_cast<double>(points.rows());
+  state.counters["patches"] = static_cast<double>(patches);
+}
+BENCHMARK(BM_LocalQuadricBuild)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+void BM_LocalQuadricField(benchmark::State& state) {
+  const auto [points, normals] = touched_points(state.range(0));
+  const gp::LocalQuadricSurface surface(points, normals);
+  const Eigen::MatrixX3d q = gp::grid_around(points, 5.0, 48).sample_points();
+  std::vector<bool> covered;
+  for (auto _ : state) benchmark::DoNotOptimize(surface.value(q, covered, 1));
+  state.counters["grid_points"] = static_cast<double>(q.rows());
+}
+BENCHMARK(BM_LocalQuadricField)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 void BM_LevelSetMesh(benchmark::State& state) {
   const int cells = static_cast<int>(state.range(0));

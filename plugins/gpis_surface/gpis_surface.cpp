@@ -78,8 +78,8 @@ class GpisSurface final : public Stage {
   std::vector<gp::ImplicitTouch> touches_;  // exact_then_sparse, while exact: for the sparse form's fit
   MeshedSurface meshed_ = MeshedSurface::gp_mean;
   gp::LocalQuadricOptions quadric_;
-  Eigen::MatrixX3d touched_, outward_;  // local_quadrics: every touched point and its side's normal
-  std::size_t touches_kept_ = 0;
+  // local_quadrics: the side's normal of each of the model's contact points, in their order.
+  Eigen::MatrixX3d outward_;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
   SurfaceModelPtr surface_;
@@ -151,9 +151,7 @@ class GpisSurface final : public Stage {
     options_.max_training_points = exact_max_points_;
     warned_below_table_ = false;
     touches_.clear();
-    touched_.resize(0, 3);
     outward_.resize(0, 3);
-    touches_kept_ = 0;
     if (form_ != ImplicitForm::sparse)
       model_ = std::make_shared<gp::ImplicitSurface>(options_);
     else
@@ -218,7 +216,7 @@ class GpisSurface final : public Stage {
                                             : gp::grid_around(contacts, margin_mm_, static_cast<int>(cells_));
     if (table_z_mm_) warn_of_points_below_table(contacts, ctx);
     if (meshed_ == MeshedSurface::local_quadrics) {
-      const gp::LocalQuadricSurface quadrics(touched_, outward_, quadric_);
+      const gp::LocalQuadricSurface quadrics(contacts, outward_, quadric_);
       QuadricMeshCounts dropped;
       mesh_ = local_quadric_mesh(
           grid, quadrics, [&](const Eigen::MatrixX3d& q) { return model->mean(q, static_cast<int>(threads_)); },
@@ -287,16 +285,19 @@ class GpisSurface final : public Stage {
     model_ = std::move(sparse);
   }
 
-  // The touched points and the side each touch came from: its palm's
-  // normal, or without one what the GP takes (gp::checked_touch_normals).
+  // The side each point of the touch came from: its palm's normal, or
+  // without one what the GP takes (gp::checked_touch_normals), before the
+  // model adds the touch's points to its contacts.
   void keep_for_quadrics(const gp::ImplicitTouch& touch, const RunContext& ctx) {
-    const Eigen::Index from = touched_.rows(), k = touch.points_mm.rows();
+    const Eigen::Index from = outward_.rows(), k = touch.points_mm.rows();
     bool estimated = false;
-    const Eigen::MatrixX3d side = gp::checked_touch_normals(
-        touch, touched_, "implicit surface, touch " + std::to_string(run_touch(ctx, touches_kept_ + 1)), estimated);
-    ++touches_kept_;
-    touched_.conservativeResize(from + k, 3);
-    touched_.bottomRows(k) = touch.points_mm;
+    const Eigen::MatrixX3d side = std::visit(
+        [&](const auto& model) {
+          return gp::checked_touch_normals(
+              touch, model->contact_points(),
+              "implicit surface, touch " + std::to_string(run_touch(ctx, model->touches() + 1)), estimated);
+        },
+        model_);
     outward_.conservativeResize(from + k, 3);
     outward_.bottomRows(k) = side;
   }

@@ -8,7 +8,12 @@
 // surface's normal. Every touch is checked against the scene's object before
 // it is made (reach_check.hpp: refuse_approach): one whose gel would meet the
 // table or the object on its way, or that the robot's tilt limit excludes, is
-// refused with its reason and the next best is taken. A touch counts as
+// refused with its reason and the next best is taken. With oblique_deg, a
+// candidate whose press against its normal is refused is tried next along
+// presses turned from it towards straight down (planning::press_directions):
+// the simulator, like a robot moving straight in, meets the first surface
+// along the approach, so a cup's inner wall is hidden along its normal
+// behind the far wall but reached at a slant through the opening. A touch counts as
 // refused when the planner's first choice was (once per touch, by that
 // choice's reason); every candidate checked and refused is counted apart.
 //
@@ -40,6 +45,8 @@ class SideTouch final : public Stage {
   std::optional<simulation::TurntableSpec> turntable_;
   std::array<long, 4> refused_{};  // touches whose first choice was refused, by that choice's ReachRefusal
   long refused_candidates_ = 0;    // every approach checked and refused
+  std::vector<double> oblique_deg_;
+  long oblique_touches_ = 0;
   int calls_ = 0;
   std::size_t next_start_ = 0;
 
@@ -62,6 +69,10 @@ class SideTouch final : public Stage {
         .doc("reach: the gel's path ends this far past first contact (the stable-contact travel and the press)");
     p.add("reach_tolerance_mm", limits_.tolerance_mm, 10.0).unit("mm").above(0.0)
         .doc("reach: the gel may stop at most this far before the intended contact");
+    p.add("oblique_deg", oblique_deg_, std::vector<double>{}).unit("deg")
+        .doc("where the press against a candidate's normal is refused, presses turned from it this far towards "
+             "straight down are checked in turn (a dome presses a surface obliquely: a cup's inner wall, hidden "
+             "behind the far wall along its normal, is reached through the opening); empty: against the normal only");
     p.add("max_tilt_deg", limits_.max_tilt_deg, 90.0).unit("deg").range(0.0, 180.0)
         .doc("reach: the robot's largest approach angle from straight down (90: horizontal at most)");
   }
@@ -89,9 +100,13 @@ class SideTouch final : public Stage {
     ports.metric("refused_candidates", "approaches",
                  "every approach checked and refused, the alternatives tried after a first choice included").final();
     ports.metric("touches_planned", "touches", "touches this stage chose").final();
+    ports.metric("oblique_touches", "touches", "touches pressed obliquely (oblique_deg), not against the normal").final();
   }
   void on_check(RunContext&) override {
     if (scene_file_.empty()) throw ParameterError("scene", "is needed: the reach check meets the scene's object");
+    for (const double deg : oblique_deg_)
+      if (!(deg > 0 && deg <= 90))
+        throw ParameterError("oblique_deg", std::to_string(deg) + ": each turn from the normal must lie in (0, 90] degrees");
     const simulation::Scene scene = simulation::load_scene(scene_file_);
     if (scene.object.kind != ObjectKind::Mesh)
       throw ParameterError("scene", "its object is " + std::string(to_string(scene.object.kind)) +
@@ -177,13 +192,17 @@ class SideTouch final : public Stage {
     const auto candidates = planning::side_candidates(**implicit, surface, choice_, ctx.rng()());
     std::optional<simulation::ReachRefusal> first;
     for (const planning::SideCandidate& c : candidates) {
-      const Eigen::Isometry3d frame = simulation::approach_frame(c.point_mm, -c.outward);
-      if (refused(frame, 0.0, first)) continue;
-      count_refused_touch(first);
-      ctx.metric("chosen_variance", c.variance_mm2, "mm^2");
-      ctx.metric("footprint_variance", c.footprint_variance_mm2, "mm^2");
-      emit(frame, c.point_mm, io, ctx, false);
-      return;
+      const auto directions = planning::press_directions(c.outward, oblique_deg_);
+      for (std::size_t k = 0; k < directions.size(); ++k) {
+        const Eigen::Isometry3d frame = simulation::approach_frame(c.point_mm, directions[k]);
+        if (refused(frame, 0.0, first)) continue;
+        count_refused_touch(first);
+        if (k > 0) ++oblique_touches_;
+        ctx.metric("chosen_variance", c.variance_mm2, "mm^2");
+        ctx.metric("footprint_variance", c.footprint_variance_mm2, "mm^2");
+        emit(frame, c.point_mm, io, ctx, false);
+        return;
+      }
     }
     count_refused_touch(first);
     // Nothing reachable: one more touch straight down at the centre, and the loop ends.
@@ -201,6 +220,7 @@ class SideTouch final : public Stage {
     ctx.metric("refused_touches", static_cast<double>(all), "touches");
     ctx.metric("refused_candidates", static_cast<double>(refused_candidates_), "approaches");
     ctx.metric("touches_planned", calls_, "touches");
+    ctx.metric("oblique_touches", static_cast<double>(oblique_touches_), "touches");
   }
 };
 

@@ -2,6 +2,7 @@
 // (bottom on the table, 30 mm tall): touches from any side, each checked
 // against the scene's object before it is made; on a turntable, the chosen
 // approach turned with the object.
+#include <cmath>
 #include <fstream>
 
 #include <Eigen/Geometry>
@@ -11,6 +12,8 @@
 
 #include "stage_harness.hpp"
 #include "test_support.hpp"
+#include "touchcloud/types/implicit_model.hpp"
+#include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/touch.hpp"
 
 namespace fs = std::filesystem;
@@ -103,4 +106,79 @@ TEST(SideTouch, TheStartTouchesFromSeveralSides) {
   EXPECT_EQ(metric(s, "sensor.touches"), 6);
   EXPECT_LT(metric(s, "score.chamfer_est_to_gt"), 5.0);
   EXPECT_TRUE(fs::exists(dir / "start/torus_mesh.ply"));
+}
+
+namespace {
+
+// The shipped mug's inner wall (a cylinder of radius 36 mm about its body's
+// axis at x = -13.5 mm) as a model predicts it, and points on it from 20 to
+// 60 mm up: every candidate faces the axis.
+class MugInnerWall final : public touchcloud::ImplicitModel {
+ public:
+  static Eigen::Vector2d axis() { return {-13.5, 0}; }
+  static constexpr double kRadiusMm = 36;
+  Eigen::VectorXd mean(const Eigen::MatrixX3d& p) const override {
+    return kRadiusMm - (p.leftCols<2>().rowwise() - axis().transpose()).rowwise().norm().array();
+  }
+  Eigen::VectorXd variance(const Eigen::MatrixX3d& p) const override { return Eigen::VectorXd::Ones(p.rows()); }
+  static touchcloud::CloudConstPtr points() {
+    auto cloud = std::make_shared<touchcloud::PointCloud>();
+    for (int deg = 0; deg < 360; deg += 10)
+      for (double z = 20; z <= 60; z += 10)
+        cloud->push_back(pcl::PointXYZ(static_cast<float>(axis().x() + kRadiusMm * std::cos(deg * M_PI / 180)),
+                                       static_cast<float>(kRadiusMm * std::sin(deg * M_PI / 180)), static_cast<float>(z)));
+    return cloud;
+  }
+};
+
+}  // namespace
+
+// A cup's inner wall cannot be pressed against its normal: the far wall
+// stands in the way of every such approach, so the planner finds nothing
+// to reach and stops. With oblique_deg it turns the press towards straight
+// down and reaches the wall through the opening.
+TEST(SideTouch, AnInnerWallHiddenAlongItsNormalIsPressedObliquely) {
+  using namespace touchcloud;
+  const fs::path scene = test::source_dir() / "sample_clouds/closed_objects/mug/scene_fingertip.yaml";
+  const ImplicitModelPtr wall = std::make_shared<MugInnerWall>();
+  for (const bool oblique : {false, true}) {
+    std::map<std::string, ParamValue> params{{"scene", scene.string()}, {"start_touches", std::int64_t{1}}};
+    if (oblique) params["oblique_deg"] = std::vector<double>{30, 45, 60};
+    test::StageHarness h("side_touch", params, "plan");
+    h.configure();
+    h.process_one<TouchTarget>({}, "target");  // the start
+    const auto out = h.process({{"implicit", wall}, {"surface_points", MugInnerWall::points()}}, {"target", "done"});
+    const bool done = std::any_cast<bool>(out.at("done"));
+    h.finish();
+    if (!oblique) {
+      EXPECT_TRUE(done);
+      EXPECT_EQ(h.metric("oblique_touches"), 0);
+      continue;
+    }
+    ASSERT_FALSE(done);
+    EXPECT_EQ(h.metric("oblique_touches"), 1);
+    const auto target = std::any_cast<TouchTarget>(out.at("target"));
+    ASSERT_TRUE(target.base_from_approach);
+    const Eigen::Vector3d press = -target.base_from_approach->linear().col(2);
+    const Eigen::Vector3d at = target.base_from_approach->translation();
+    const Eigen::Vector2d radial = (at.head<2>() - MugInnerWall::axis()).normalized();
+    const double off_normal = std::acos(std::clamp(press.head<2>().dot(radial), -1.0, 1.0)) * 180 / M_PI;
+    EXPECT_NEAR((at.head<2>() - MugInnerWall::axis()).norm(), MugInnerWall::kRadiusMm, 1e-3);
+    EXPECT_LT(press.z(), 0);  // heading down into the cup
+    EXPECT_GE(std::acos(press.dot(Eigen::Vector3d(radial.x(), radial.y(), 0))) * 180 / M_PI, 30 - 1e-6) << off_normal;
+  }
+}
+
+TEST(SideTouch, AnObliqueTurnBeyondTheHorizonIsRefusedNamingIt) {
+  using namespace touchcloud;
+  const fs::path scene = test::source_dir() / "sample_clouds/closed_objects/mug/scene_fingertip.yaml";
+  for (const double deg : {0.0, 120.0}) {
+    test::StageHarness h("side_touch", {{"scene", scene.string()}, {"oblique_deg", std::vector<double>{30, deg}}}, "plan");
+    try {
+      h.configure();
+      ADD_FAILURE() << deg << " degrees taken";
+    } catch (const ParameterError& e) {
+      EXPECT_NE(std::string(e.what()).find("oblique_deg"), std::string::npos) << e.what();
+    }
+  }
 }

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include "touchcloud/error.hpp"
 
 namespace touchcloud::planning {
@@ -56,6 +58,19 @@ std::vector<SideCandidate> side_candidates(const ImplicitModel& model, const std
   std::stable_sort(out.begin(), out.end(), [](const SideCandidate& a, const SideCandidate& b) {
     return a.footprint_variance_mm2 > b.footprint_variance_mm2;
   });
+  return out;
+}
+
+std::vector<Eigen::Vector3d> press_directions(const Eigen::Vector3d& outward, const std::vector<double>& oblique_deg) {
+  const Eigen::Vector3d normal = -outward.normalized(), down(0, 0, -1);
+  std::vector<Eigen::Vector3d> out{normal};
+  const Eigen::Vector3d axis = normal.cross(down);
+  if (axis.norm() < 1e-9) return out;  // straight down or straight up: no way to turn towards down
+  const double to_down = std::atan2(axis.norm(), normal.dot(down));
+  for (const double deg : oblique_deg) {
+    const double angle = std::min(deg * M_PI / 180.0, to_down);
+    out.push_back((Eigen::AngleAxisd(angle, axis.normalized()) * normal).normalized());
+  }
   return out;
 }
 

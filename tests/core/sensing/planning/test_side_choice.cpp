@@ -81,3 +81,20 @@ TEST(SideChoice, AStartGoesStraightDownThenEvenlyRoundTheVertical) {
   }
   EXPECT_NEAR((d[1] + d[2] + d[3] + d[4]).head<2>().norm(), 0.0, 1e-12);  // evenly round
 }
+
+TEST(SideChoice, ObliquePressesTurnFromTheNormalTowardsStraightDown) {
+  // A cup's inner wall facing -x: pressed along +x, then turned towards down.
+  const auto d = planning::press_directions({-1, 0, 0}, {30, 90, 120});
+  ASSERT_EQ(d.size(), 4u);
+  EXPECT_NEAR((d[0] - Eigen::Vector3d(1, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(std::acos(d[1].dot(d[0])) * 180 / std::numbers::pi, 30.0, 1e-9);
+  EXPECT_NEAR(d[1].y(), 0.0, 1e-12);  // in the plane of the normal and the vertical
+  EXPECT_LT(d[1].z(), 0.0);           // heading down
+  EXPECT_NEAR((d[2] - Eigen::Vector3d(0, 0, -1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((d[3] - Eigen::Vector3d(0, 0, -1)).norm(), 0.0, 1e-12);  // no further than straight down
+  for (const auto& v : d) EXPECT_NEAR(v.norm(), 1.0, 1e-12);
+  // Straight down already, or straight up: nothing to turn.
+  EXPECT_EQ(planning::press_directions({0, 0, 1}, {30}).size(), 1u);
+  EXPECT_EQ(planning::press_directions({0, 0, -1}, {30}).size(), 1u);
+  EXPECT_EQ(planning::press_directions({0, 1, 0}, {}).size(), 1u);
+}

@@ -37,6 +37,14 @@ struct SideChoiceOptions {
 std::vector<SideCandidate> side_candidates(const ImplicitModel& model, const std::vector<Eigen::Vector3d>& surface_mm,
                                            const SideChoiceOptions& options, std::uint64_t seed);
 
+// The press directions to try at a candidate, in turn: against its normal
+// (-outward), then turned from that towards straight down by each of
+// `oblique_deg` (a dome can press a surface obliquely: a cup's inner wall,
+// hidden along its normal behind the far wall, is reached through the
+// opening). A tilt past straight down stops there; a press already straight
+// down, or straight up, has no oblique ones. Unit vectors.
+std::vector<Eigen::Vector3d> press_directions(const Eigen::Vector3d& outward, const std::vector<double>& oblique_deg);
+
 // A start before any model: straight down first, then `count` - 1 directions
 // `tilt_deg` from it, evenly round the vertical (unit approach directions).
 std::vector<Eigen::Vector3d> start_directions(int count, double tilt_deg);

@@ -62,8 +62,8 @@ std::vector<SideCandidate> side_candidates(const ImplicitModel& model, const std
 }
 
 std::vector<Eigen::Vector3d> press_directions(const Eigen::Vector3d& outward, const std::vector<double>& oblique_deg) {
+  std::vector<Eigen::Vector3d> out{-outward};  // against the normal: -outward itself, not normalised again
   const Eigen::Vector3d normal = -outward.normalized(), down(0, 0, -1);
-  std::vector<Eigen::Vector3d> out{normal};
   const Eigen::Vector3d axis = normal.cross(down);
   if (axis.norm() < 1e-9) return out;  // straight down or straight up: no way to turn towards down
   const double to_down = std::atan2(axis.norm(), normal.dot(down));

@@ -42,7 +42,8 @@ std::vector<SideCandidate> side_candidates(const ImplicitModel& model, const std
 // `oblique_deg` (a dome can press a surface obliquely: a cup's inner wall,
 // hidden along its normal behind the far wall, is reached through the
 // opening). A tilt past straight down stops there; a press already straight
-// down, or straight up, has no oblique ones. Unit vectors.
+// down, or straight up, has no oblique ones. The first is -outward as given,
+// the others unit vectors.
 std::vector<Eigen::Vector3d> press_directions(const Eigen::Vector3d& outward, const std::vector<double>& oblique_deg);
 
 // A start before any model: straight down first, then `count` - 1 directions

@@ -84,6 +84,8 @@ void LocalQuadricOptions::validate() const {
   if (min_fit_points < 6) throw InputError("local quadric option min_fit_points must be >= 6 (a quadric has six terms)");
   if (!(lateral_weight >= 0) || !std::isfinite(lateral_weight))
     throw InputError("local quadric option lateral_weight must be finite and >= 0");
+  if (!(edge_deg >= 0 && edge_deg < 180))
+    throw InputError("local quadric option edge_deg = " + std::to_string(edge_deg) + " must lie in [0, 180)");
   if (!(free_margin_mm >= 0) || !std::isfinite(free_margin_mm))
     throw InputError("local quadric option free_margin_mm must be finite and >= 0");
 }
@@ -92,6 +94,8 @@ struct LocalQuadricSurface::Impl {
   LocalQuadricOptions options;
   std::vector<Patch> patches;
   std::unique_ptr<Tree> centres;
+  double across_edge(const Eigen::Vector3d& p, std::uint32_t best, double d,
+                     const std::vector<std::pair<std::uint32_t, double>>& reached, double cos_edge) const;
 };
 
 LocalQuadricSurface::LocalQuadricSurface(const Eigen::MatrixX3d& points_mm, const Eigen::MatrixX3d& outward,
@@ -185,21 +189,49 @@ LocalQuadricSurface::~LocalQuadricSurface() = default;
 
 std::size_t LocalQuadricSurface::patches() const { return impl_->patches.size(); }
 
+// The best patch's distance `d`, or, where the best of the patches turned
+// from it by more than the edge angle says the other side, the pair's solid:
+// see the header. `reached`: each patch within reach and its score.
+double LocalQuadricSurface::Impl::across_edge(const Eigen::Vector3d& p, std::uint32_t best, double d,
+                                              const std::vector<std::pair<std::uint32_t, double>>& reached,
+                                              double cos_edge) const {
+  const Patch& a = patches[best];
+  double other_score = std::numeric_limits<double>::infinity();
+  std::uint32_t other = 0;
+  for (const auto& [j, score] : reached)
+    if (patches[j].n.dot(a.n) < cos_edge && (score < other_score || (score == other_score && j < other))) {
+      other_score = score;
+      other = j;
+    }
+  if (!std::isfinite(other_score)) return d;
+  const Patch& b = patches[other];
+  const double e = b.at(p).first;
+  if ((d > 0) == (e > 0)) return d;
+  const double a_sees_b = a.n.dot(b.centre - a.centre), b_sees_a = b.n.dot(a.centre - b.centre);
+  if (a_sees_b < 0 && b_sees_a < 0) return std::max(d, e);  // convex: inside both
+  if (a_sees_b > 0 && b_sees_a > 0) return std::min(d, e);  // concave: inside either
+  return d;
+}
+
 Eigen::VectorXd LocalQuadricSurface::value(const Eigen::Ref<const Eigen::MatrixX3d>& q, std::vector<bool>& covered,
                                            int threads) const {
   const LocalQuadricOptions& o = impl_->options;
   Eigen::VectorXd out = Eigen::VectorXd::Zero(q.rows());
   std::vector<char> flags(static_cast<std::size_t>(q.rows()), 0);
   const double search_mm = o.reach_mm;  // patches whose centre lies within reach
+  const double cos_edge = std::cos(o.edge_deg * M_PI / 180.0);
   for_each_block(static_cast<std::size_t>(q.rows()), resolve_threads(threads), 256, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<std::uint32_t, double>> reached;  // patch, its distance
     for (auto i = static_cast<Eigen::Index>(begin); i < static_cast<Eigen::Index>(end); ++i) {
       const Eigen::Vector3d p = q.row(i).transpose();
       double best = std::numeric_limits<double>::infinity();
       std::uint32_t best_index = 0;  // ties go to the lowest index: the same for any thread count
+      reached.clear();
       for (const auto& [j, d2] : impl_->centres->within(p, search_mm)) {
         const auto [d, lateral] = impl_->patches[j].at(p);
         if (lateral > o.reach_mm) continue;
         const double score = std::abs(d) + o.lateral_weight * lateral;
+        if (o.edge_deg > 0) reached.emplace_back(j, score);
         if (score < best || (score == best && j < best_index)) {
           best = score;
           best_index = j;
@@ -207,6 +239,7 @@ Eigen::VectorXd LocalQuadricSurface::value(const Eigen::Ref<const Eigen::MatrixX
         }
       }
       flags[static_cast<std::size_t>(i)] = std::isfinite(best);
+      if (o.edge_deg > 0 && std::isfinite(best)) out[i] = impl_->across_edge(p, best_index, out[i], reached, cos_edge);
     }
   });
   covered.assign(flags.begin(), flags.end());

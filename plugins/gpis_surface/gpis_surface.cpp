@@ -82,6 +82,9 @@ class GpisSurface final : public Stage {
   Eigen::MatrixX3d outward_;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
+  bool plan_gaps_ = false;
+  std::vector<Eigen::Vector3d> gaps_;  // plan_gaps: the last mesh's jump triangles' centroids
+  CloudConstPtr candidates_;
   SurfaceModelPtr surface_;
   ImplicitModelPtr implicit_;
 
@@ -135,9 +138,18 @@ class GpisSurface final : public Stage {
              "GP either way");
     p.add("quadric_reach_mm", quadric_.reach_mm, 16.0).unit("mm").above(0.0)
         .doc("local_quadrics: how far across its normal a patch's quadric stands for the surface");
+    p.add("quadric_edge_deg", quadric_.edge_deg, 0.0).unit("deg").range(0.0, 179.0)
+        .doc("local_quadrics: where the nearest patch and one turned more than this from it disagree in sign, the "
+             "pair's solid decides (a convex edge: inside both; a concave one: inside either), so a face's plane is "
+             "not carried past a sharp edge; 0: the nearest patch alone");
     p.add("free_radius_mm", quadric_.free_radius_mm, 7.0).unit("mm").above(0.0)
         .doc("local_quadrics: triangles in front of a touched patch, within this of its centre across its normal "
              "(where the gel lay), are dropped");
+    p.add("plan_gaps", plan_gaps_, false)
+        .doc("local_quadrics: the planner's candidates (the `candidates` output) take, besides the cloud, the centre "
+             "of each triangle dropped where the field jumps: where the quadrics and the GP's mean disagree, a face "
+             "no touch has found yet (a cup's inner wall behind its touched outer wall) which the mesh leaves out; "
+             "false: the candidates are the cloud");
     p.add("mesh", mesh_path_).output_file()
         .doc("PLY file in the output folder for the last mesh, with each vertex's variance (mm^2); not set: none");
   }
@@ -146,6 +158,8 @@ class GpisSurface final : public Stage {
       throw ParameterError("min_noise_mm", "must not exceed max_noise_mm");
     if (mesh_path_ && std::filesystem::path(*mesh_path_).extension() != ".ply")
       throw ParameterError("mesh", "'" + *mesh_path_ + "': a mesh is written as .ply");
+    if (plan_gaps_ && meshed_ != MeshedSurface::local_quadrics)
+      throw ParameterError("plan_gaps", "adds the local quadrics' mesh's gaps: set surface: local_quadrics");
   }
   void on_configure(RunContext&) override {
     options_.max_training_points = exact_max_points_;
@@ -162,6 +176,8 @@ class GpisSurface final : public Stage {
     ports.input<CloudConstPtr>("cloud", "the points this touch adds, base frame, mm");
     ports.optional_input<TactileCloudPtr>("tactile", "the touch's tactile cloud: its sensor pose gives the palm's normal");
     ports.output<CloudConstPtr>("cloud", "points sampled on the zero level set, base frame, mm");
+    ports.output<CloudConstPtr>("candidates", "points a planner may choose a touch among (side_touch's surface_points): "
+                                              "the cloud, with plan_gaps the mesh's gaps too");
     ports.output<SurfaceModelPtr>("surface", "the implicit surface as a press from above meets it: its highest "
                                              "zero crossing over each (x, y) and the variance there, for next_touch");
     ports.output<ImplicitModelPtr>("implicit", "the implicit surface itself (signed distance and variance), for "
@@ -220,7 +236,8 @@ class GpisSurface final : public Stage {
       QuadricMeshCounts dropped;
       mesh_ = local_quadric_mesh(
           grid, quadrics, [&](const Eigen::MatrixX3d& q) { return model->mean(q, static_cast<int>(threads_)); },
-          table_z_mm_, static_cast<int>(threads_), dropped);
+          table_z_mm_, static_cast<int>(threads_), dropped, plan_gaps_);
+      gaps_ = std::move(dropped.jump_centroids);
       ctx.metric("quadric_patches", static_cast<double>(quadrics.patches()));
       ctx.metric("dropped_jump_triangles", static_cast<double>(dropped.jumps));
       ctx.metric("dropped_free_space_triangles", static_cast<double>(dropped.free_space));
@@ -308,6 +325,7 @@ class GpisSurface final : public Stage {
     if (cloud->empty()) {  // a touch that added nothing: the surface stays as it was
       if (!cloud_) throw RunError("no touched points yet: the implicit surface needs a touch with points");
       io.output("cloud", cloud_);
+      io.output("candidates", candidates_);
       if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
       if (implicit_) io.output<ImplicitModelPtr>("implicit", implicit_);
       return;
@@ -329,6 +347,14 @@ class GpisSurface final : public Stage {
       out->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
     cloud_ = out;
     io.output("cloud", cloud_);
+    candidates_ = cloud_;
+    if (plan_gaps_ && !gaps_.empty()) {
+      auto with_gaps = std::make_shared<PointCloud>(*cloud_);
+      for (const Eigen::Vector3d& p : gaps_)
+        with_gaps->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
+      candidates_ = with_gaps;
+    }
+    io.output("candidates", candidates_);
     if (surface_) io.output<SurfaceModelPtr>("surface", surface_);
     if (implicit_) io.output<ImplicitModelPtr>("implicit", implicit_);
   }

@@ -33,7 +33,8 @@ Eigen::VectorXd field_at(const Eigen::MatrixX3d& points, const gp::LocalQuadricS
 
 scoring::TriangleMesh local_quadric_mesh(const gp::SampleGrid& grid, const gp::LocalQuadricSurface& quadrics,
                                          const std::function<Eigen::VectorXd(const Eigen::MatrixX3d&)>& gp_mean,
-                                         std::optional<double> table_z_mm, int threads, QuadricMeshCounts& counts) {
+                                         std::optional<double> table_z_mm, int threads, QuadricMeshCounts& counts,
+                                         bool keep_jumps) {
   Eigen::VectorXd values = field_at(grid.sample_points(), quadrics, gp_mean, std::nullopt, threads);
   if (table_z_mm) gp::clip_above_table(grid, *table_z_mm, values);
   const scoring::TriangleMesh all = gp::zero_level_set(grid, values);
@@ -53,6 +54,7 @@ scoring::TriangleMesh local_quadric_mesh(const gp::SampleGrid& grid, const gp::L
   for (std::size_t t = 0; t < all.triangles.size(); ++t) {
     if (std::abs(at_centroid[static_cast<Eigen::Index>(t)]) > jump_mm) {
       ++counts.jumps;
+      if (keep_jumps) counts.jump_centroids.push_back(centroids.row(static_cast<Eigen::Index>(t)).transpose());
       continue;
     }
     if (quadrics.in_free_space(centroids.row(static_cast<Eigen::Index>(t)).transpose())) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 #include <optional>
 
 #include <Eigen/Core>
@@ -21,12 +22,14 @@ namespace touchcloud {
 struct QuadricMeshCounts {
   std::size_t jumps = 0;       // triangles dropped on a jump of the field
   std::size_t free_space = 0;  // triangles dropped in a gel's space
+  std::vector<Eigen::Vector3d> jump_centroids;  // with keep_jumps: the centroid of each triangle dropped on a jump
 };
 
 // `gp_mean`: the GP's mean at points (the values on the grid where no patch
 // reaches). `table_z_mm`: the table clips the field as gp::clip_above_table.
 scoring::TriangleMesh local_quadric_mesh(const gp::SampleGrid& grid, const gp::LocalQuadricSurface& quadrics,
                                          const std::function<Eigen::VectorXd(const Eigen::MatrixX3d&)>& gp_mean,
-                                         std::optional<double> table_z_mm, int threads, QuadricMeshCounts& counts);
+                                         std::optional<double> table_z_mm, int threads, QuadricMeshCounts& counts,
+                                         bool keep_jumps = false);
 
 }  // namespace touchcloud

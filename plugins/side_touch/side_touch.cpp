@@ -47,6 +47,8 @@ class SideTouch final : public Stage {
   long refused_candidates_ = 0;    // every approach checked and refused
   std::vector<double> oblique_deg_;
   long oblique_touches_ = 0;
+  double table_clearance_mm_ = 0;
+  long low_candidates_ = 0;  // candidates skipped below table_clearance_mm
   int calls_ = 0;
   std::size_t next_start_ = 0;
 
@@ -73,6 +75,11 @@ class SideTouch final : public Stage {
         .doc("where the press against a candidate's normal is refused, presses turned from it this far towards "
              "straight down are checked in turn (a dome presses a surface obliquely: a cup's inner wall, hidden "
              "behind the far wall along its normal, is reached through the opening); empty: against the normal only");
+    p.add("table_clearance_mm", table_clearance_mm_, 0.0).unit("mm").at_least(0.0)
+        .doc("candidates lower than this above the table are skipped: the surface meshed there is where the object "
+             "stands on the table, and a press aimed at it meets the wall above it (a gel cannot press lower than "
+             "about its radius without touching the table), so its variance would draw touch after touch to the same "
+             "band; 0: none skipped");
     p.add("max_tilt_deg", limits_.max_tilt_deg, 90.0).unit("deg").range(0.0, 180.0)
         .doc("reach: the robot's largest approach angle from straight down (90: horizontal at most)");
   }
@@ -101,6 +108,7 @@ class SideTouch final : public Stage {
                  "every approach checked and refused, the alternatives tried after a first choice included").final();
     ports.metric("touches_planned", "touches", "touches this stage chose").final();
     ports.metric("oblique_touches", "touches", "touches pressed obliquely (oblique_deg), not against the normal").final();
+    ports.metric("low_candidates", "points", "candidates skipped below table_clearance_mm, all touches").final();
   }
   void on_check(RunContext&) override {
     if (scene_file_.empty()) throw ParameterError("scene", "is needed: the reach check meets the scene's object");
@@ -192,6 +200,11 @@ class SideTouch final : public Stage {
     const auto candidates = planning::side_candidates(**implicit, surface, choice_, ctx.rng()());
     std::optional<simulation::ReachRefusal> first;
     for (const planning::SideCandidate& c : candidates) {
+      // The table is the object frame's z = 0 (the reach check's too).
+      if (c.point_mm.z() < table_clearance_mm_) {
+        ++low_candidates_;
+        continue;
+      }
       const auto directions = planning::press_directions(c.outward, oblique_deg_);
       for (std::size_t k = 0; k < directions.size(); ++k) {
         const Eigen::Isometry3d frame = simulation::approach_frame(c.point_mm, directions[k]);
@@ -221,6 +234,7 @@ class SideTouch final : public Stage {
     ctx.metric("refused_candidates", static_cast<double>(refused_candidates_), "approaches");
     ctx.metric("touches_planned", calls_, "touches");
     ctx.metric("oblique_touches", static_cast<double>(oblique_touches_), "touches");
+    ctx.metric("low_candidates", static_cast<double>(low_candidates_), "points");
   }
 };
 

@@ -99,6 +99,67 @@ TEST(LocalQuadricSurface, NormalsComeFromPointsTouchedFromTheSameSide) {
   }
 }
 
+// A step's profile, touched densely on its three faces (y from -15 to 15):
+// the tall part's top z = 40 for x < 5, the riser x = 5 from z = 20 to 40,
+// the low part's top z = 20 for x > 5.
+Touched step_faces() {
+  Touched t;
+  auto face = [&](auto at, double from, double to, const Eigen::Vector3d& out) {
+    std::vector<Eigen::Vector3d> ps;
+    for (double s = from; s <= to + 1e-9; s += 1.0)
+      for (double y = -15; y <= 15 + 1e-9; y += 1.0) ps.push_back(at(s, y));
+    ImplicitTouch touch;
+    touch.points_mm.resize(static_cast<Eigen::Index>(ps.size()), 3);
+    for (std::size_t i = 0; i < ps.size(); ++i) touch.points_mm.row(static_cast<Eigen::Index>(i)) = ps[i].transpose();
+    touch.normals = out.transpose().replicate(touch.points_mm.rows(), 1);
+    t.add(touch);
+  };
+  face([](double x, double y) { return Eigen::Vector3d(x, y, 40); }, -30, 5, {0, 0, 1});
+  face([](double z, double y) { return Eigen::Vector3d(5, y, z); }, 20, 40, {1, 0, 0});
+  face([](double x, double y) { return Eigen::Vector3d(x, y, 20); }, 5, 35, {0, 0, 1});
+  return t;
+}
+
+TEST(LocalQuadricSurface, APlaneIsNotCarriedPastASharpEdge) {
+  const Touched t = step_faces();
+  Eigen::MatrixX3d q(4, 3);
+  q.row(0) << 2, 0, 22;     // inside the tall part, 3 mm behind the riser, 2 mm above the low top's plane
+  q.row(1) << 9, 0, 39;     // outside, 4 mm in front of the riser, 1 mm below the tall top's plane
+  q.row(2) << -15, 0, 42;   // 2 mm above the tall top, far from its edge
+  q.row(3) << 20, 0, 17;    // 3 mm under the low top
+  std::vector<bool> covered;
+  const Eigen::VectorXd nearest = LocalQuadricSurface(t.points, t.outward).value(q, covered);
+  // The nearest patch alone: the low top's plane runs on under the riser,
+  // the tall top's past its edge, and each says the wrong side.
+  EXPECT_GT(nearest[0], 0.0);
+  EXPECT_LT(nearest[1], 0.0);
+  LocalQuadricOptions options;
+  options.edge_deg = 60;
+  const Eigen::VectorXd edges = LocalQuadricSurface(t.points, t.outward, options).value(q, covered);
+  EXPECT_NEAR(edges[0], -3.0, 0.3) << "concave edge: inside either face's solid";
+  EXPECT_NEAR(edges[1], 4.0, 0.3) << "convex edge: inside both";
+  EXPECT_EQ(edges[2], nearest[2]) << "a face far from its edges keeps its own distance";
+  EXPECT_EQ(edges[3], nearest[3]);
+  EXPECT_NEAR(edges[2], 2.0, 0.1);
+  EXPECT_NEAR(edges[3], -3.0, 0.1);
+}
+
+TEST(LocalQuadricSurface, AThinWallsFacesAreAConvexPairAcrossItsHollow) {
+  const Touched t = thin_wall();
+  LocalQuadricOptions options;
+  options.edge_deg = 60;
+  const LocalQuadricSurface surface(t.points, t.outward, options);
+  Eigen::MatrixX3d q(3, 3);
+  q.row(0) = at_radius(33.0, 30, 45).transpose();  // the hollow, 3 mm from the inner face
+  q.row(1) = at_radius(38.0, 30, 45).transpose();  // inside the wall
+  q.row(2) = at_radius(43.0, 30, 45).transpose();  // outside
+  std::vector<bool> covered;
+  const Eigen::VectorXd d = surface.value(q, covered);
+  EXPECT_NEAR(d[0], 3.0, 0.5);
+  EXPECT_NEAR(d[1], -2.0, 0.5);
+  EXPECT_NEAR(d[2], 3.0, 0.5);
+}
+
 TEST(LocalQuadricSurface, FreeSpaceIsWhereAGelLayInFrontOfAPatch) {
   const Touched t = thin_wall();
   const LocalQuadricSurface surface(t.points, t.outward);
@@ -138,6 +199,9 @@ TEST(LocalQuadricSurface, RefusesBadInputSayingWhat) {
   bad(7, 1) = std::nan("");
   EXPECT_THROW(LocalQuadricSurface(bad, t.outward), InputError);
   LocalQuadricOptions options;
+  options.edge_deg = 180;
+  EXPECT_THROW(LocalQuadricSurface(t.points, t.outward, options), InputError);
+  options.edge_deg = 0;
   options.reach_mm = 0;
   try {
     LocalQuadricSurface(t.points, t.outward, options);

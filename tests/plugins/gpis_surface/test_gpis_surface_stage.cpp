@@ -5,6 +5,7 @@
 // (no side known) and a run without points are refused.
 #include <cmath>
 #include <fstream>
+#include <algorithm>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -306,6 +307,50 @@ TEST_F(GpisSurfaceStage, LocalQuadricsKeepAThinWallThinBetweenItsInnerTouches) {
   }
   EXPECT_GT(share["local_quadrics"], 0.93);
   EXPECT_LT(share["gp_mean"], 0.6);
+}
+
+// plan_gaps: the planner's candidates are the cloud and the centre of every
+// triangle dropped on a jump of the field; the cloud itself (what is scored)
+// is the same with and without. On the cup wall touched all round outside
+// and every 60 degrees inside, gaps lie in the hollow, where the inner face
+// between the inner touches is not meshed.
+TEST_F(GpisSurfaceStage, PlanGapsAddTheMeshsGapsToTheCandidatesOnly) {
+  const test::CupWall wall;
+  std::map<bool, std::vector<Eigen::Vector3f>> clouds, candidates;
+  for (const bool gaps : {false, true}) {
+    test::StageHarness h("gpis_surface", {{"kernel", std::string("matern52")}, {"cells", std::int64_t{32}},
+                                          {"samples", std::int64_t{5000}}, {"surface", std::string("local_quadrics")},
+                                          {"plan_gaps", gaps}},
+                         "fit");
+    h.configure();
+    std::map<std::string, std::any> out;
+    for (const auto& t : wall.touches(2.0, 30, {45}))
+      out = h.process({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, {"cloud", "candidates"});
+    for (const auto& p : std::any_cast<CloudConstPtr>(out.at("cloud"))->points) clouds[gaps].push_back(p.getVector3fMap());
+    for (const auto& p : std::any_cast<CloudConstPtr>(out.at("candidates"))->points)
+      candidates[gaps].push_back(p.getVector3fMap());
+    if (gaps) EXPECT_EQ(candidates[gaps].size(), clouds[gaps].size() + h.metric("dropped_jump_triangles"));
+  }
+  EXPECT_EQ(clouds[false], clouds[true]);
+  EXPECT_EQ(candidates[false], clouds[false]);
+  ASSERT_GT(candidates[true].size(), clouds[true].size());
+  EXPECT_TRUE(std::equal(clouds[true].begin(), clouds[true].end(), candidates[true].begin()));
+  std::size_t in_hollow = 0;
+  for (std::size_t i = clouds[true].size(); i < candidates[true].size(); ++i) {
+    const Eigen::Vector3f& p = candidates[true][i];
+    if (std::hypot(p.x(), p.y()) < wall.inner_mm - 2 && p.z() > 35 && p.z() < 55) ++in_hollow;
+  }
+  EXPECT_GT(in_hollow, 20u);
+}
+
+TEST_F(GpisSurfaceStage, PlanGapsNeedLocalQuadrics) {
+  test::StageHarness h("gpis_surface", {{"plan_gaps", true}}, "fit");
+  try {
+    h.configure();
+    ADD_FAILURE() << "plan_gaps taken without local_quadrics";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("plan_gaps"), std::string::npos) << e.what();
+  }
 }
 
 // Touches after the first without a pose: local quadrics take each one's

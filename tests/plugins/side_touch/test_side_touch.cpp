@@ -171,6 +171,61 @@ TEST(SideTouch, AnInnerWallHiddenAlongItsNormalIsPressedObliquely) {
   }
 }
 
+namespace {
+
+// The shipped mug's outer wall (radius 40 mm about x = -13.5 mm) as a model
+// predicts it, least certain at its foot: points all round it 3 mm and 50 mm up.
+class MugOuterWall final : public touchcloud::ImplicitModel {
+ public:
+  Eigen::VectorXd mean(const Eigen::MatrixX3d& p) const override {
+    return (p.leftCols<2>().rowwise() - MugInnerWall::axis().transpose()).rowwise().norm().array() - 40.0;
+  }
+  Eigen::VectorXd variance(const Eigen::MatrixX3d& p) const override {
+    return (p.col(2).array() < 10).select(Eigen::VectorXd::Constant(p.rows(), 50.0), Eigen::VectorXd::Ones(p.rows()));
+  }
+  static touchcloud::CloudConstPtr points() {
+    auto cloud = std::make_shared<touchcloud::PointCloud>();
+    for (int deg = 0; deg < 360; deg += 10)
+      for (const double z : {3.0, 50.0})
+        cloud->push_back(pcl::PointXYZ(static_cast<float>(MugInnerWall::axis().x() + 40 * std::cos(deg * M_PI / 180)),
+                                       static_cast<float>(40 * std::sin(deg * M_PI / 180)), static_cast<float>(z)));
+    return cloud;
+  }
+};
+
+}  // namespace
+
+// The wall's foot, where the object stands on the table, is where the model
+// knows least; an oblique press aimed at it is made (and meets the wall
+// higher up). With table_clearance_mm the planner leaves the foot alone and
+// presses the wall above it.
+TEST(SideTouch, CandidatesAtTheObjectsFootAreSkippedAboveTheTableClearance) {
+  using namespace touchcloud;
+  const fs::path scene = test::source_dir() / "sample_clouds/closed_objects/mug/scene_fingertip.yaml";
+  const ImplicitModelPtr wall = std::make_shared<MugOuterWall>();
+  for (const double clearance : {0.0, 10.0}) {
+    test::StageHarness h("side_touch",
+                         {{"scene", scene.string()},
+                          {"start_touches", std::int64_t{1}},
+                          {"oblique_deg", std::vector<double>{20, 40, 60, 75}},
+                          {"table_clearance_mm", clearance}},
+                         "plan");
+    h.configure();
+    h.process_one<TouchTarget>({}, "target");  // the start
+    const auto out = h.process({{"implicit", wall}, {"surface_points", MugOuterWall::points()}}, {"target", "done"});
+    h.finish();
+    ASSERT_FALSE(std::any_cast<bool>(out.at("done")));
+    const double z = h.metric("target_z_mm");
+    if (clearance == 0) {
+      EXPECT_EQ(z, 3.0) << "the foot, least certain, is chosen";
+      EXPECT_EQ(h.metric("low_candidates"), 0);
+    } else {
+      EXPECT_EQ(z, 50.0);
+      EXPECT_EQ(h.metric("low_candidates"), 36) << "every point at the foot was drawn and skipped";
+    }
+  }
+}
+
 TEST(SideTouch, AnObliqueTurnBeyondTheHorizonIsRefusedNamingIt) {
   using namespace touchcloud;
   const fs::path scene = test::source_dir() / "sample_clouds/closed_objects/mug/scene_fingertip.yaml";

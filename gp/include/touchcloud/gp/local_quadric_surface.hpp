@@ -17,6 +17,15 @@
 // says nothing (covered() is false) and the caller falls back (gpis_surface:
 // the GP's mean).
 //
+// Sharp edges (`edge_deg` > 0): beside an edge the nearest patch's quadric
+// runs on past it, so a low face's plane, carried under the riser of a step,
+// puts a sheet inside the solid. Where the best patch and the best of those
+// turned more than `edge_deg` from it disagree in sign, the two are combined
+// as the solid they bound: each centre behind the other's plane is a convex
+// edge (the solid is inside both: the larger distance), each in front a
+// concave one (inside either: the smaller); otherwise the best stands. A thin
+// wall's two faces are a convex pair, so its hollow stays outside.
+//
 // Free space: the gel that made a touch lay against its patch, so what lies
 // in front of a patch (more than `free_margin_mm` outside its quadric, within
 // `free_radius_mm` of its centre across the normal and `free_depth_mm` along
@@ -40,6 +49,7 @@ struct LocalQuadricOptions {
   int min_fit_points = 15;  // fewer: the patch is the plane through its points
   double reach_mm = 16.0;
   double lateral_weight = 0.3;
+  double edge_deg = 0.0;  // 0: no edge combination
   double free_radius_mm = 7.0;
   double free_margin_mm = 1.0;
   double free_depth_mm = 25.0;

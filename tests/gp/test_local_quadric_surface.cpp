@@ -55,7 +55,6 @@ TEST(LocalQuadricSurface, RecoversASpheresRadiusFromTouchesAllRound) {
 
 TEST(LocalQuadricSurface, KeepsAThinWallThinWhereOnlyItsOuterFaceIsTouchedNearby) {
   const Touched t = thin_wall();
-  const LocalQuadricSurface surface(t.points, t.outward);
   // Angle 30 degrees, height 45: outer patches 4 mm away across the wall,
   // the nearest inner patch 19 mm away along it.
   Eigen::MatrixX3d q(4, 3);
@@ -63,12 +62,18 @@ TEST(LocalQuadricSurface, KeepsAThinWallThinWhereOnlyItsOuterFaceIsTouchedNearby
   q.row(1) = at_radius(38.0, 30, 45).transpose();  // inside the wall
   q.row(2) = at_radius(36.0, 30, 45).transpose();  // the inner face
   q.row(3) = at_radius(43.0, 30, 45).transpose();  // outside
-  std::vector<bool> covered;
-  const Eigen::VectorXd d = surface.value(q, covered);
-  EXPECT_NEAR(d[0], 3.0, 0.5);
-  EXPECT_NEAR(d[1], -2.0, 0.5);
-  EXPECT_NEAR(d[2], 0.0, 0.5);
-  EXPECT_NEAR(d[3], 3.0, 0.5);
+  // With sharp edges the same: the wall's two faces are a convex pair, so
+  // the hollow stays outside.
+  for (const double edge_deg : {0.0, 60.0}) {
+    LocalQuadricOptions options;
+    options.edge_deg = edge_deg;
+    std::vector<bool> covered;
+    const Eigen::VectorXd d = LocalQuadricSurface(t.points, t.outward, options).value(q, covered);
+    EXPECT_NEAR(d[0], 3.0, 0.5) << edge_deg;
+    EXPECT_NEAR(d[1], -2.0, 0.5) << edge_deg;
+    EXPECT_NEAR(d[2], 0.0, 0.5) << edge_deg;
+    EXPECT_NEAR(d[3], 3.0, 0.5) << edge_deg;
+  }
 
   // The GP over the same touches (markers 2 mm apart, to keep it small),
   // its lengthscale chosen for them, gives the hollow point under 1 mm where
@@ -142,22 +147,6 @@ TEST(LocalQuadricSurface, APlaneIsNotCarriedPastASharpEdge) {
   EXPECT_EQ(edges[3], nearest[3]);
   EXPECT_NEAR(edges[2], 2.0, 0.1);
   EXPECT_NEAR(edges[3], -3.0, 0.1);
-}
-
-TEST(LocalQuadricSurface, AThinWallsFacesAreAConvexPairAcrossItsHollow) {
-  const Touched t = thin_wall();
-  LocalQuadricOptions options;
-  options.edge_deg = 60;
-  const LocalQuadricSurface surface(t.points, t.outward, options);
-  Eigen::MatrixX3d q(3, 3);
-  q.row(0) = at_radius(33.0, 30, 45).transpose();  // the hollow, 3 mm from the inner face
-  q.row(1) = at_radius(38.0, 30, 45).transpose();  // inside the wall
-  q.row(2) = at_radius(43.0, 30, 45).transpose();  // outside
-  std::vector<bool> covered;
-  const Eigen::VectorXd d = surface.value(q, covered);
-  EXPECT_NEAR(d[0], 3.0, 0.5);
-  EXPECT_NEAR(d[1], -2.0, 0.5);
-  EXPECT_NEAR(d[2], 3.0, 0.5);
 }
 
 TEST(LocalQuadricSurface, FreeSpaceIsWhereAGelLayInFrontOfAPatch) {

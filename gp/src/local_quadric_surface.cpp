@@ -86,6 +86,8 @@ void LocalQuadricOptions::validate() const {
     throw InputError("local quadric option lateral_weight must be finite and >= 0");
   if (!(edge_deg >= 0 && edge_deg < 180))
     throw InputError("local quadric option edge_deg = " + std::to_string(edge_deg) + " must lie in [0, 180)");
+  if (!(free_support_mm >= 0) || !std::isfinite(free_support_mm))
+    throw InputError("local quadric option free_support_mm must be finite and >= 0");
   if (!(free_margin_mm >= 0) || !std::isfinite(free_margin_mm))
     throw InputError("local quadric option free_margin_mm must be finite and >= 0");
 }
@@ -248,13 +250,22 @@ Eigen::VectorXd LocalQuadricSurface::value(const Eigen::Ref<const Eigen::MatrixX
 
 bool LocalQuadricSurface::in_free_space(const Eigen::Vector3d& p) const {
   const LocalQuadricOptions& o = impl_->options;
+  bool in_front = false;
   for (const auto& [j, d2] : impl_->centres->within(p, std::hypot(o.free_radius_mm, o.free_depth_mm))) {
     const Patch& patch = impl_->patches[j];
     const auto [d, lateral] = patch.at(p);
     const double along = (p - patch.centre).dot(patch.n);
-    if (lateral < o.free_radius_mm && d > o.free_margin_mm && along < o.free_depth_mm) return true;
+    if (lateral < o.free_radius_mm && d > o.free_margin_mm && along < o.free_depth_mm) {
+      in_front = true;
+      break;
+    }
   }
-  return false;
+  if (!in_front || !(o.free_support_mm > 0)) return in_front;
+  for (const auto& [j, d2] : impl_->centres->within(p, std::hypot(o.free_support_mm, o.free_margin_mm))) {
+    const auto [d, lateral] = impl_->patches[j].at(p);
+    if (lateral < o.free_support_mm && std::abs(d) <= o.free_margin_mm) return false;  // on a touched patch
+  }
+  return true;
 }
 
 }  // namespace touchcloud::gp

@@ -138,6 +138,10 @@ class GpisSurface final : public Stage {
              "GP either way");
     p.add("quadric_reach_mm", quadric_.reach_mm, 16.0).unit("mm").above(0.0)
         .doc("local_quadrics: how far across its normal a patch's quadric stands for the surface");
+    p.add("free_support_mm", quadric_.free_support_mm, 0.0).unit("mm").at_least(0.0)
+        .doc("local_quadrics: a triangle on a touched patch's quadric (within 1 mm, within this of its centre across "
+             "its normal) is kept even where it lies in front of another patch: a gel pressed into a concave corner "
+             "(a cup's wall meeting its floor) lay against both faces; 0: free space drops it");
     p.add("quadric_edge_deg", quadric_.edge_deg, 0.0).unit("deg").range(0.0, 179.0)
         .doc("local_quadrics: where the nearest patch and one turned more than this from it disagree in sign, the "
              "pair's solid decides (a convex edge: inside both; a concave one: inside either), so a face's plane is "

@@ -104,24 +104,28 @@ TEST(LocalQuadricSurface, NormalsComeFromPointsTouchedFromTheSameSide) {
   }
 }
 
-// A step's profile, touched densely on its three faces (y from -15 to 15):
-// the tall part's top z = 40 for x < 5, the riser x = 5 from z = 20 to 40,
-// the low part's top z = 20 for x > 5.
+// A flat face touched densely as one touch: at(s, y) for s from `from` to
+// `to` and y from -15 to 15, 1 mm apart, its palm's normal `out`.
+template <class At>
+void add_face(Touched& t, At at, double from, double to, const Eigen::Vector3d& out) {
+  std::vector<Eigen::Vector3d> ps;
+  for (double s = from; s <= to + 1e-9; s += 1.0)
+    for (double y = -15; y <= 15 + 1e-9; y += 1.0) ps.push_back(at(s, y));
+  ImplicitTouch touch;
+  touch.points_mm.resize(static_cast<Eigen::Index>(ps.size()), 3);
+  for (std::size_t i = 0; i < ps.size(); ++i) touch.points_mm.row(static_cast<Eigen::Index>(i)) = ps[i].transpose();
+  touch.normals = out.transpose().replicate(touch.points_mm.rows(), 1);
+  t.add(touch);
+}
+
+// A step's profile, touched densely on its three faces: the tall part's
+// top z = 40 for x < 5, the riser x = 5 from z = 20 to 40, the low part's
+// top z = 20 for x > 5.
 Touched step_faces() {
   Touched t;
-  auto face = [&](auto at, double from, double to, const Eigen::Vector3d& out) {
-    std::vector<Eigen::Vector3d> ps;
-    for (double s = from; s <= to + 1e-9; s += 1.0)
-      for (double y = -15; y <= 15 + 1e-9; y += 1.0) ps.push_back(at(s, y));
-    ImplicitTouch touch;
-    touch.points_mm.resize(static_cast<Eigen::Index>(ps.size()), 3);
-    for (std::size_t i = 0; i < ps.size(); ++i) touch.points_mm.row(static_cast<Eigen::Index>(i)) = ps[i].transpose();
-    touch.normals = out.transpose().replicate(touch.points_mm.rows(), 1);
-    t.add(touch);
-  };
-  face([](double x, double y) { return Eigen::Vector3d(x, y, 40); }, -30, 5, {0, 0, 1});
-  face([](double z, double y) { return Eigen::Vector3d(5, y, z); }, 20, 40, {1, 0, 0});
-  face([](double x, double y) { return Eigen::Vector3d(x, y, 20); }, 5, 35, {0, 0, 1});
+  add_face(t, [](double x, double y) { return Eigen::Vector3d(x, y, 40); }, -30, 5, {0, 0, 1});
+  add_face(t, [](double z, double y) { return Eigen::Vector3d(5, y, z); }, 20, 40, {1, 0, 0});
+  add_face(t, [](double x, double y) { return Eigen::Vector3d(x, y, 20); }, 5, 35, {0, 0, 1});
   return t;
 }
 
@@ -159,6 +163,26 @@ TEST(LocalQuadricSurface, FreeSpaceIsWhereAGelLayInFrontOfAPatch) {
   EXPECT_FALSE(surface.in_free_space(at_radius(40.5, 15, 45)));  // within the margin of the face
 }
 
+// A gel pressed into a concave corner: a floor z = 0 touched from above for
+// x from 0 to 30, a wall x = 0 touched from the side for z from 0 to 30
+// (y from -15 to 15). The floor lies in front of the wall's lowest patches,
+// and the wall in front of the floor's patches by it.
+TEST(LocalQuadricSurface, AConcaveCornersTouchedFacesAreNotEachOthersFreeSpace) {
+  Touched t;
+  add_face(t, [](double x, double y) { return Eigen::Vector3d(x, y, 0); }, 0, 30, {0, 0, 1});
+  add_face(t, [](double z, double y) { return Eigen::Vector3d(0, y, z); }, 0, 30, {1, 0, 0});
+  const Eigen::Vector3d on_floor(3, 0, 0), on_wall(0, 0, 3), in_the_air(4, 0, 4);
+  const LocalQuadricSurface cylinders(t.points, t.outward);
+  EXPECT_TRUE(cylinders.in_free_space(on_floor)) << "in front of the wall's lowest patch";
+  EXPECT_TRUE(cylinders.in_free_space(on_wall)) << "in front of the floor's patch by the wall";
+  LocalQuadricOptions options;
+  options.free_support_mm = 3.5;
+  const LocalQuadricSurface supported(t.points, t.outward, options);
+  EXPECT_FALSE(supported.in_free_space(on_floor));
+  EXPECT_FALSE(supported.in_free_space(on_wall));
+  EXPECT_TRUE(supported.in_free_space(in_the_air));
+}
+
 TEST(LocalQuadricSurface, TheSameValuesOnAnyNumberOfThreads) {
   const Touched t = thin_wall();
   const LocalQuadricSurface surface(t.points, t.outward);
@@ -191,6 +215,9 @@ TEST(LocalQuadricSurface, RefusesBadInputSayingWhat) {
   options.edge_deg = 180;
   EXPECT_THROW(LocalQuadricSurface(t.points, t.outward, options), InputError);
   options.edge_deg = 0;
+  options.free_support_mm = -1;
+  EXPECT_THROW(LocalQuadricSurface(t.points, t.outward, options), InputError);
+  options.free_support_mm = 0;
   options.reach_mm = 0;
   try {
     LocalQuadricSurface(t.points, t.outward, options);

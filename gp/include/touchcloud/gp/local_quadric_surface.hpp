@@ -30,7 +30,12 @@
 // in front of a patch (more than `free_margin_mm` outside its quadric, within
 // `free_radius_mm` of its centre across the normal and `free_depth_mm` along
 // it) holds no surface; in_free_space() says so, and gpis_surface drops mesh
-// triangles there.
+// triangles there. A gel pressed into a concave corner (a cup's wall
+// where it meets the floor) lay against both faces, and the cylinder in
+// front of one patch runs into the other: with `free_support_mm` > 0 a point
+// that lies on a patch's quadric (within `free_margin_mm`, within
+// `free_support_mm` of its centre across its normal) is touched surface and
+// never free space.
 #pragma once
 
 #include <cstddef>
@@ -53,6 +58,7 @@ struct LocalQuadricOptions {
   double free_radius_mm = 7.0;
   double free_margin_mm = 1.0;
   double free_depth_mm = 25.0;
+  double free_support_mm = 0.0;  // 0: a patch's support does not count
   void validate() const;  // InputError naming the field, its value and the rule
 };
 

@@ -223,7 +223,7 @@ Eigen::VectorXd LocalQuadricSurface::value(const Eigen::Ref<const Eigen::MatrixX
   const double search_mm = o.reach_mm;  // patches whose centre lies within reach
   const double cos_edge = std::cos(o.edge_deg * M_PI / 180.0);
   for_each_block(static_cast<std::size_t>(q.rows()), resolve_threads(threads), 256, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<std::uint32_t, double>> reached;  // patch, its distance
+    std::vector<std::pair<std::uint32_t, double>> reached;  // patch, its score
     for (auto i = static_cast<Eigen::Index>(begin); i < static_cast<Eigen::Index>(end); ++i) {
       const Eigen::Vector3d p = q.row(i).transpose();
       double best = std::numeric_limits<double>::infinity();

@@ -8,8 +8,8 @@
 #pragma once
 
 #include <functional>
-#include <vector>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -27,6 +27,8 @@ struct QuadricMeshCounts {
 
 // `gp_mean`: the GP's mean at points (the values on the grid where no patch
 // reaches). `table_z_mm`: the table clips the field as gp::clip_above_table.
+// `keep_jumps`: the dropped jumps' centroids are kept in `counts` (where a
+// face is not yet found: gpis_surface's plan_gaps).
 scoring::TriangleMesh local_quadric_mesh(const gp::SampleGrid& grid, const gp::LocalQuadricSurface& quadrics,
                                          const std::function<Eigen::VectorXd(const Eigen::MatrixX3d&)>& gp_mean,
                                          std::optional<double> table_z_mm, int threads, QuadricMeshCounts& counts,

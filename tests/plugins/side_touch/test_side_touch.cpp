@@ -111,6 +111,17 @@ TEST(SideTouch, TheStartTouchesFromSeveralSides) {
 
 namespace {
 
+// Points every 10 degrees round the shipped mug's body's axis (x = -13.5 mm),
+// `radius_mm` from it, at each of `heights_mm`.
+touchcloud::CloudConstPtr ring_points(double radius_mm, const std::vector<double>& heights_mm) {
+  auto cloud = std::make_shared<touchcloud::PointCloud>();
+  for (int deg = 0; deg < 360; deg += 10)
+    for (const double z : heights_mm)
+      cloud->push_back(pcl::PointXYZ(static_cast<float>(-13.5 + radius_mm * std::cos(deg * M_PI / 180)),
+                                     static_cast<float>(radius_mm * std::sin(deg * M_PI / 180)), static_cast<float>(z)));
+  return cloud;
+}
+
 // The shipped mug's inner wall (a cylinder of radius 36 mm about its body's
 // axis at x = -13.5 mm) as a model predicts it, and points on it from 20 to
 // 60 mm up: every candidate faces the axis.
@@ -122,14 +133,7 @@ class MugInnerWall final : public touchcloud::ImplicitModel {
     return kRadiusMm - (p.leftCols<2>().rowwise() - axis().transpose()).rowwise().norm().array();
   }
   Eigen::VectorXd variance(const Eigen::MatrixX3d& p) const override { return Eigen::VectorXd::Ones(p.rows()); }
-  static touchcloud::CloudConstPtr points() {
-    auto cloud = std::make_shared<touchcloud::PointCloud>();
-    for (int deg = 0; deg < 360; deg += 10)
-      for (double z = 20; z <= 60; z += 10)
-        cloud->push_back(pcl::PointXYZ(static_cast<float>(axis().x() + kRadiusMm * std::cos(deg * M_PI / 180)),
-                                       static_cast<float>(kRadiusMm * std::sin(deg * M_PI / 180)), static_cast<float>(z)));
-    return cloud;
-  }
+  static touchcloud::CloudConstPtr points() { return ring_points(kRadiusMm, {20, 30, 40, 50, 60}); }
 };
 
 }  // namespace
@@ -183,14 +187,7 @@ class MugOuterWall final : public touchcloud::ImplicitModel {
   Eigen::VectorXd variance(const Eigen::MatrixX3d& p) const override {
     return (p.col(2).array() < 10).select(Eigen::VectorXd::Constant(p.rows(), 50.0), Eigen::VectorXd::Ones(p.rows()));
   }
-  static touchcloud::CloudConstPtr points() {
-    auto cloud = std::make_shared<touchcloud::PointCloud>();
-    for (int deg = 0; deg < 360; deg += 10)
-      for (const double z : {3.0, 50.0})
-        cloud->push_back(pcl::PointXYZ(static_cast<float>(MugInnerWall::axis().x() + 40 * std::cos(deg * M_PI / 180)),
-                                       static_cast<float>(40 * std::sin(deg * M_PI / 180)), static_cast<float>(z)));
-    return cloud;
-  }
+  static touchcloud::CloudConstPtr points() { return ring_points(40, {3, 50}); }
 };
 
 }  // namespace

@@ -42,6 +42,14 @@ Eigen::MatrixX3d checked_touch_normals(const ImplicitTouch& touch, const Eigen::
   const Eigen::Index k = touch.points_mm.rows();
   if (k == 0) throw InputError(where + ": no points");
   if (!touch.points_mm.allFinite()) throw InputError(where + ": a point is not finite");
+  if (touch.free_distance_mm.size() != touch.free_mm.rows())
+    throw InputError(where + ": " + std::to_string(touch.free_distance_mm.size()) + " distances for " +
+                     std::to_string(touch.free_mm.rows()) + " swept points");
+  if (!touch.free_mm.allFinite()) throw InputError(where + ": a swept point is not finite");
+  for (Eigen::Index i = 0; i < touch.free_distance_mm.size(); ++i)
+    if (!(touch.free_distance_mm[i] > 0) || !std::isfinite(touch.free_distance_mm[i]))
+      throw InputError(where + ": swept point " + std::to_string(i) + " has distance " +
+                       std::to_string(touch.free_distance_mm[i]) + " (finite and > 0 expected: it is outside)");
   estimated = false;
   Eigen::MatrixX3d normals = touch.normals;
   if (normals.rows() == 0) {
@@ -77,7 +85,7 @@ Eigen::MatrixX3d checked_touch_normals(const ImplicitTouch& touch, const Eigen::
 void append_implicit_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals, const ImplicitSurfaceOptions& options,
                               ImplicitTraining& t) {
   const Eigen::Index k = touch.points_mm.rows();
-  const Eigen::Index add = implicit_rows_of(k, options);
+  const Eigen::Index add = implicit_rows_of(touch, options);
   if (t.x.rows() < t.n + add) {
     const Eigen::Index capacity = std::max<Eigen::Index>(2 * t.x.rows(), t.n + add);
     t.x.conservativeResize(capacity, 3);
@@ -91,13 +99,34 @@ void append_implicit_training(const ImplicitTouch& touch, const Eigen::MatrixX3d
       t.x.row(row) = touch.points_mm.row(i) + side * options.offset_mm * normals.row(i);
       t.f[row++] = side * options.offset_mm;
     }
-  t.n = row;
+  const Eigen::Index swept = touch.free_mm.rows();
+  t.x.middleRows(row, swept) = touch.free_mm;
+  t.f.segment(row, swept) = touch.free_distance_mm;
+  t.n = row + swept;
   t.contacts.conservativeResize(t.contacts.rows() + k, 3);
   t.contacts.bottomRows(k) = touch.points_mm;
 }
 
-Eigen::Index implicit_rows_of(Eigen::Index contacts, const ImplicitSurfaceOptions& options) {
-  return contacts + 2 * ((contacts + options.offset_stride - 1) / options.offset_stride);
+Eigen::Index implicit_rows_of(const ImplicitTouch& touch, const ImplicitSurfaceOptions& options) {
+  const Eigen::Index k = touch.points_mm.rows();
+  return k + 2 * ((k + options.offset_stride - 1) / options.offset_stride) + touch.free_mm.rows();
+}
+
+void add_swept_approach(ImplicitTouch& touch, const Eigen::Vector3d& contact_mm, const Eigen::Vector3d& outward,
+                        double length_mm, double step_mm) {
+  if (!(step_mm > 0) || !(length_mm >= 0) || !std::isfinite(length_mm) || !contact_mm.allFinite() ||
+      std::abs(outward.norm() - 1) > 1e-6)
+    throw InputError("swept approach: the contact must be finite, the direction unit length, the step > 0 and the "
+                     "length finite and >= 0");
+  const auto steps = static_cast<Eigen::Index>(std::floor(length_mm / step_mm + 1e-9));
+  const Eigen::Index from = touch.free_mm.rows();
+  touch.free_mm.conservativeResize(from + steps, 3);
+  touch.free_distance_mm.conservativeResize(from + steps);
+  for (Eigen::Index i = 0; i < steps; ++i) {
+    const double s = step_mm * static_cast<double>(i + 1);
+    touch.free_mm.row(from + i) = (contact_mm + s * outward).transpose();
+    touch.free_distance_mm[from + i] = s;
+  }
 }
 
 double ImplicitTraining::diameter_mm() const {
@@ -166,7 +195,7 @@ ImplicitUpdate ImplicitSurface::add(const ImplicitTouch& touch) {
   ImplicitUpdate update;
   const Eigen::MatrixX3d normals = checked_touch_normals(touch, data_.contacts, where, update.normals_estimated);
   const Eigen::Index from = data_.n;
-  const Eigen::Index adding = implicit_rows_of(touch.points_mm.rows(), options_);
+  const Eigen::Index adding = implicit_rows_of(touch, options_);
   if (options_.max_training_points && data_.n + adding > *options_.max_training_points)
     throw InputError(where + ": " + std::to_string(data_.n + adding) + " training points would exceed the exact form's " +
                      std::to_string(*options_.max_training_points) + " (max_training_points): use the sparse form");

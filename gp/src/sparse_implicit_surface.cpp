@@ -60,7 +60,7 @@ ImplicitUpdate SparseImplicitSurface::add(const ImplicitTouch& touch) {
   append_implicit_training(touch, normals, options_, data_);
   ++touches_;
   update.points_added = data_.n - from;
-  add_sites(from, touch.points_mm.rows());
+  add_sites(from, touch);
   if (selects_again()) {
     update.lml = select_on_touches(update.selection_points);
     update.path = ImplicitUpdatePath::selected;
@@ -78,17 +78,31 @@ ImplicitUpdate SparseImplicitSurface::add(const ImplicitTouch& touch) {
   return update;
 }
 
-void SparseImplicitSurface::add_sites(Eigen::Index from, Eigen::Index contacts) {
+void SparseImplicitSurface::add_sites(Eigen::Index from, const ImplicitTouch& touch) {
   const double spacing2 = sparse_.inducing_spacing_mm * sparse_.inducing_spacing_mm;
+  const auto taken = [&](const Eigen::Vector3d& c) {
+    return std::any_of(sites_.begin(), sites_.end(), [&](const Eigen::Vector3d& s) { return (s - c).squaredNorm() < spacing2; });
+  };
+  const auto add = [&](Eigen::Index row, Eigen::Index count) {
+    if (u_.rows() < m_ + count) u_.conservativeResize(std::max<Eigen::Index>(2 * u_.rows(), m_ + count), 3);
+    u_.middleRows(m_, count) = data_.x.middleRows(row, count);
+    m_ += count;
+  };
+  const Eigen::Index contacts = touch.points_mm.rows();
   for (Eigen::Index i = 0; i < contacts; i += options_.offset_stride) {
     const Eigen::Vector3d c = data_.x.row(from + i).transpose();
-    if (std::any_of(sites_.begin(), sites_.end(), [&](const Eigen::Vector3d& s) { return (s - c).squaredNorm() < spacing2; }))
-      continue;
+    if (taken(c)) continue;
     sites_.push_back(c);
-    if (u_.rows() < m_ + 2) u_.conservativeResize(std::max<Eigen::Index>(2 * u_.rows(), m_ + 2), 3);
-    const Eigen::Index pair = from + contacts + 2 * (i / options_.offset_stride);  // as append_implicit_training lays it out
-    u_.middleRows(m_, 2) = data_.x.middleRows(pair, 2);
-    m_ += 2;
+    add(from + contacts + 2 * (i / options_.offset_stride), 2);  // the pair, as append_implicit_training lays it out
+  }
+  // A swept point where no site is near is a site of its own: the space a gel
+  // went through can lie far from any contact (a cup's mouth).
+  const Eigen::Index swept_from = data_.n - touch.free_mm.rows();
+  for (Eigen::Index i = 0; i < touch.free_mm.rows(); ++i) {
+    const Eigen::Vector3d c = touch.free_mm.row(i).transpose();
+    if (taken(c)) continue;
+    sites_.push_back(c);
+    add(swept_from + i, 1);
   }
 }
 

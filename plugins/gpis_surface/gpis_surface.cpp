@@ -17,6 +17,9 @@
 // The palm's normal comes from the tactile cloud's sensor pose (against its
 // z axis: the gel presses along +z of the sensor frame); without the tactile input each touch's normal
 // is its patch's plane normal, turned away from the centroid of all points.
+// With swept_mm the pose also gives the press's path: points back along it
+// from the contact, outside at their distance from it (gp::add_swept_approach),
+// so the GP does not close space a gel went through.
 //
 // table_z_mm: the object rests on a table there (base frame). The meshed
 // field is the model's clipped to the space above the plane
@@ -82,6 +85,8 @@ class GpisSurface final : public Stage {
   Eigen::MatrixX3d outward_;
   scoring::TriangleMesh mesh_;
   CloudConstPtr cloud_;
+  double swept_mm_ = 0;
+  double swept_step_mm_ = 4.0;
   bool plan_gaps_ = false;
   std::vector<Eigen::Vector3d> gaps_;  // plan_gaps: the last mesh's jump triangles' centroids
   CloudConstPtr candidates_;
@@ -110,6 +115,13 @@ class GpisSurface final : public Stage {
         .doc("covariance of the signed distance: thin-plate (scale: at least the data's diameter) or Matern");
     p.add("offset_mm", options_.offset_mm, 2.0).unit("mm").above(0.0)
         .doc("distance of the signed points along the palm's normal, outside (+) and inside (-) the contact");
+    p.add("swept_mm", swept_mm_, 0.0).unit("mm").at_least(0.0)
+        .doc("how far back along each press's approach from its contact the GP is told the space is free (the gel "
+             "went through it): points every swept_step_mm on the gel's axis, each outside at its distance from the "
+             "contact; opens what the smooth field closes across a gap a press went through (a cup's mouth over its "
+             "floor); needs input 'tactile' (the press's pose); 0: none");
+    p.add("swept_step_mm", swept_step_mm_, 4.0).unit("mm").above(0.0)
+        .doc("spacing of the swept points along the approach");
     p.add("offset_stride", options_.offset_stride, 4).at_least(1)
         .doc("every this-many-th contact point of a touch gets a signed pair");
     p.add("selection_points", options_.selection_points, Eigen::Index{400}).at_least(3).unit("points")
@@ -288,7 +300,7 @@ class GpisSurface final : public Stage {
     const auto* exact = std::get_if<std::shared_ptr<gp::ImplicitSurface>>(&model_);
     if (!exact) return;
     const Eigen::Index before = (*exact)->training_size();
-    if (before + gp::implicit_rows_of(touch.points_mm.rows(), options_) <= exact_max_points_) {
+    if (before + gp::implicit_rows_of(touch, options_) <= exact_max_points_) {
       touches_.push_back(touch);
       return;
     }
@@ -323,6 +335,17 @@ class GpisSurface final : public Stage {
     outward_.bottomRows(k) = side;
   }
 
+  // The contact point nearest the sensor's axis: where the gel's apex met
+  // the object, the end of the path its axis swept.
+  static Eigen::Vector3d nearest_to_axis(const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& axis) {
+    const Eigen::MatrixX3d v = points.rowwise() - origin.transpose();
+    const Eigen::VectorXd along = v * axis;
+    Eigen::Index best = 0;
+    (v - along * axis.transpose()).rowwise().squaredNorm().minCoeff(&best);
+    return points.row(best).transpose();
+  }
+
   void on_process(StageIO& io, RunContext& ctx) override {
     const auto& cloud = io.input<CloudConstPtr>("cloud");
     if (!cloud) throw RunError("no cloud to add");
@@ -340,8 +363,14 @@ class GpisSurface final : public Stage {
       touch.points_mm.row(static_cast<Eigen::Index>(i)) << (*cloud)[i].x, (*cloud)[i].y, (*cloud)[i].z;
     if (const auto* tactile = io.optional_input<TactileCloudPtr>("tactile"); tactile && *tactile) {
       // The sensor's z points from the plate through the gel into the object.
-      const Eigen::Vector3d palm_normal = -(*tactile)->pose.base_from_sensor.linear().col(2).normalized();
+      const Eigen::Isometry3d& pose = (*tactile)->pose.base_from_sensor;
+      const Eigen::Vector3d palm_normal = -pose.linear().col(2).normalized();
       touch.normals = palm_normal.transpose().replicate(touch.points_mm.rows(), 1);
+      if (swept_mm_ > 0)
+        gp::add_swept_approach(touch, nearest_to_axis(touch.points_mm, pose.translation(), palm_normal), palm_normal,
+                               swept_mm_, swept_step_mm_);
+    } else if (swept_mm_ > 0) {
+      throw InputError("swept_mm needs the press's approach: wire input 'tactile' (the touch's tactile cloud)");
     }
     if (meshed_ == MeshedSurface::local_quadrics) keep_for_quadrics(touch, ctx);
     if (form_ == ImplicitForm::exact_then_sparse) switch_to_sparse_beyond_exact(touch, ctx);

@@ -115,6 +115,16 @@ struct CupWall {
   }
 };
 
+// The cup's touches (outer faces every 15 degrees) and, last, a press from
+// above on a floor at z = 10 mm, through the cup's mouth (a 6 mm patch at the axis).
+inline std::vector<gp::ImplicitTouch> cup_and_floor_press(double step_mm) {
+  std::vector<gp::ImplicitTouch> touches = CupWall().touches(step_mm);
+  std::vector<Eigen::Vector3d> floor;
+  for (const Eigen::Vector2d& st : footprint(6.0, step_mm)) floor.emplace_back(st[0], st[1], 10.0);
+  touches.push_back(touch_with_palm_normal(floor, Eigen::Vector3d::UnitZ()));
+  return touches;
+}
+
 inline Eigen::MatrixX3d one_row(const Eigen::Vector3d& p) { return p.transpose(); }
 
 // Where a model's mean crosses 0 between a (negative) and b (positive), by

@@ -191,3 +191,54 @@ TEST(ImplicitSurface, MeanSameOnAnyThreadCount) {
   const Eigen::VectorXd one = s.mean(q, 1), three = s.mean(q, 3);
   EXPECT_EQ(one, three);
 }
+
+// A cup's wall touched all round and its floor pressed from above, through
+// its mouth: the smooth field closes the mouth (the prior's sphere holds the
+// hollow, and nothing touched says otherwise), so a planner would aim at a
+// lid that is not there. The press's swept approach opens it: the axis above
+// the floor is outside, at its distance from the floor, and the walls stay
+// where they were.
+TEST(ImplicitSurface, ASweptApproachOpensTheSpaceAPressWentThrough) {
+  std::vector<gp::ImplicitTouch> touches = test::cup_and_floor_press(2.5);
+  const gp::ImplicitSurface closed = implicit_fitted(touches);
+  gp::add_swept_approach(touches.back(), {0, 0, 10}, Eigen::Vector3d::UnitZ(), 80, 4);
+  const gp::ImplicitSurface open = implicit_fitted(touches);
+  EXPECT_LT(closed.mean(one_row({0, 0, 75}))[0], -5) << "the mouth is closed without the approach";
+  for (double z = 14; z <= 90; z += 4)  // at the swept points
+    EXPECT_NEAR(open.mean(one_row({0, 0, z}))[0], z - 10, 0.5) << "on the axis at z = " << z;
+  for (double deg : {0.0, 30.0, 135.0})
+    for (double r : {38.0, 42.0}) {
+      const Eigen::MatrixX3d p = one_row(test::CupWall::at(r, deg, 45));
+      EXPECT_NEAR(open.mean(p)[0], closed.mean(p)[0], 0.1) << "the wall at radius " << r << ", " << deg << " deg";
+    }
+}
+
+// Swept points the model cannot take are refused, naming the touch and the
+// point, and leave the model as it was.
+TEST(ImplicitSurface, RefusesSweptPointsInsideOrNotFinite) {
+  gp::ImplicitSurface s{gp::ImplicitSurfaceOptions{}};
+  gp::ImplicitTouch t = SphereObject().touch({0, 0, 1});
+  EXPECT_THROW(gp::add_swept_approach(t, {0, 0, 60}, {0, 0, 2}, 20, 4), InputError) << "not a unit direction";
+  gp::add_swept_approach(t, {5, -3, 60}, {0, 0, 1}, 20, 4);
+  ASSERT_EQ(t.free_mm.rows(), 5);
+  auto message = [&](const gp::ImplicitTouch& touch) {
+    try {
+      s.add(touch);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  gp::ImplicitTouch bad = t;
+  bad.free_distance_mm[2] = 0;
+  EXPECT_NE(message(bad).find("touch 1: swept point 2 has distance 0"), std::string::npos) << message(bad);
+  bad = t;
+  bad.free_mm(4, 0) = std::nan("");
+  EXPECT_NE(message(bad).find("a swept point is not finite"), std::string::npos) << message(bad);
+  bad = t;
+  bad.free_distance_mm.conservativeResize(3);
+  EXPECT_NE(message(bad).find("3 distances for 5 swept points"), std::string::npos) << message(bad);
+  EXPECT_EQ(s.touches(), 0u);
+  EXPECT_EQ(message(t), "accepted");
+  EXPECT_EQ(s.training_size(), gp::implicit_rows_of(t, s.options()));
+}

@@ -130,3 +130,24 @@ TEST(SparseImplicitSurface, RefusesBadSpacing) {
   EXPECT_THROW(gp::SparseImplicitSurface(matern_options(), {std::nan("")}), InputError);
   EXPECT_THROW(gp::SparseImplicitSurface(matern_options(), {5.0}).mean(one_row(Eigen::Vector3d::Zero())), InputError);
 }
+
+// As ImplicitSurface.ASweptApproachOpensTheSpaceAPressWentThrough, in the
+// sparse form: the mouth, far from every contact, holds no inducing site of
+// a signed pair, so the swept points become sites of their own, and open it.
+// Sites 8 mm apart take every other swept point: between them the mean
+// swings about the distance from the floor: by 1.5 mm next to it, 3.4 mm at 44 mm.
+TEST(SparseImplicitSurface, ASweptApproachOpensTheSpaceAPressWentThrough) {
+  std::vector<gp::ImplicitTouch> touches = test::cup_and_floor_press(2.5);
+  const auto fitted = [&]() {
+    gp::SparseImplicitSurface s(matern_options(), {8.0});
+    for (const auto& t : touches) s.add(t);
+    return s;
+  };
+  const gp::SparseImplicitSurface closed = fitted();
+  gp::add_swept_approach(touches.back(), {0, 0, 10}, Eigen::Vector3d::UnitZ(), 80, 4);
+  const gp::SparseImplicitSurface open = fitted();
+  EXPECT_LT(closed.mean(one_row({0, 0, 75}))[0], -5) << "the mouth is closed without the approach";
+  EXPECT_GT(open.inducing_size(), closed.inducing_size());
+  for (double z = 14; z <= 86; z += 4)  // the last swept point, at 90, falls within 8 mm of the site at 86
+    EXPECT_NEAR(open.mean(one_row({0, 0, z}))[0], z - 10, 2.0 + 0.05 * (z - 10)) << "on the axis at z = " << z;
+}

@@ -17,6 +17,7 @@
 #include "stage_harness.hpp"
 #include "test_support.hpp"
 #include "touchcloud/scoring/triangle_mesh.hpp"
+#include "touchcloud/types/implicit_model.hpp"
 #include "touchcloud/types/point_cloud.hpp"
 #include "touchcloud/types/surface_model.hpp"
 #include "touchcloud/types/tactile_cloud.hpp"
@@ -380,4 +381,41 @@ TEST_F(GpisSurfaceStage, LocalQuadricsTakeTheSideOfATouchWithoutAPoseAsTheGpDoes
     mean_off += std::abs((clouds[1][i].getVector3fMap().cast<double>() - sphere.centre_mm).norm() - sphere.radius_mm);
   }
   EXPECT_LT(mean_off / static_cast<double>(clouds[1].size()), 1.0);  // 24 touches: 0.53 mm
+}
+
+// swept_mm: the floor's press, from above through the cup's mouth
+// (test::cup_and_floor_press), tells the GP the axis it came down is free,
+// which the `implicit` output the planner reads then says: outside over the
+// floor where without it the smooth field closes the mouth. Each touch adds
+// twenty points, every 4 mm from the contact nearest the sensor's axis.
+TEST_F(GpisSurfaceStage, SweptApproachOpensTheMouthAPressWentThrough) {
+  const auto touches = test::cup_and_floor_press(3.0);
+  const Eigen::MatrixX3d mouth = test::one_row({0, 0, 75});
+  std::map<double, double> mean_at_mouth, training;
+  for (const double swept : {0.0, 80.0}) {
+    test::StageHarness h("gpis_surface", {{"cells", std::int64_t{24}}, {"samples", std::int64_t{500}},
+                                          {"swept_mm", swept}});
+    h.configure();
+    ImplicitModelPtr model;
+    for (const auto& t : touches)
+      model = std::any_cast<ImplicitModelPtr>(
+          h.process({{"cloud", cloud_of(t)}, {"tactile", tactile_for(t)}}, {"cloud", "implicit"}).at("implicit"));
+    mean_at_mouth[swept] = model->mean(mouth)[0];
+    training[swept] = h.metric("training_points");
+  }
+  EXPECT_LT(mean_at_mouth[0], -5);
+  EXPECT_NEAR(mean_at_mouth[80], 65, 3);
+  EXPECT_EQ(training[80] - training[0], 20.0 * static_cast<double>(touches.size()));
+}
+
+TEST_F(GpisSurfaceStage, SweptApproachNeedsThePressesPose) {
+  test::StageHarness h("gpis_surface", {{"swept_mm", 40.0}});
+  h.configure();
+  const gp::ImplicitTouch t = test::SphereObject().touch({0, 0, 1});
+  try {
+    h.process({{"cloud", cloud_of(t)}}, {"cloud"});
+    ADD_FAILURE() << "a touch without its pose taken with swept_mm";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("swept_mm needs the press's approach"), std::string::npos) << e.what();
+  }
 }

@@ -38,7 +38,24 @@ struct ImplicitTouch {
   Eigen::MatrixX3d points_mm;  // on the surface, base frame
   // Outward unit normal at each point (or none: no rows, see above).
   Eigen::MatrixX3d normals = Eigen::MatrixX3d(0, 3);
+  // Points the press's approach swept through before contact, outside the
+  // object, each with its signed distance (> 0; none: no rows;
+  // add_swept_approach).
+  // They open what the smooth field closes across space a gel went through:
+  // a cup's mouth over its floor.
+  Eigen::MatrixX3d free_mm = Eigen::MatrixX3d(0, 3);
+  Eigen::VectorXd free_distance_mm = Eigen::VectorXd(0);
 };
+
+// Adds to `touch` the points a press swept: from `contact_mm` back out along
+// `outward` (unit), every step_mm up to length_mm, each at its distance s
+// from the contact. The object's true distance there lies between the gel's
+// half-width (nothing came nearer the axis the gel went down) and s (the
+// contact is that far); s is what a face's distance grows as, so the field
+// keeps its slope away from the surface (capped at the half-width, the
+// field flattened beside the inner wall of a cup and grew sheets there).
+void add_swept_approach(ImplicitTouch& touch, const Eigen::Vector3d& contact_mm, const Eigen::Vector3d& outward,
+                        double length_mm, double step_mm);
 
 struct ImplicitSurfaceOptions {
   ImplicitKernelKind kernel = ImplicitKernelKind::thin_plate;
@@ -82,13 +99,13 @@ struct ImplicitTraining {
 };
 
 // A touch's outward normals: checked, or estimated when it has none (see the
-// top); InputError naming `where` for a touch refused. `contacts`: the
-// points touched before.
+// top); InputError naming `where` for a touch refused, its swept points
+// checked too. `contacts`: the points touched before.
 Eigen::MatrixX3d checked_touch_normals(const ImplicitTouch& touch, const Eigen::MatrixX3d& contacts,
                                        const std::string& where, bool& estimated);
-// Training points a touch of `contacts` points adds (with its signed pairs).
-Eigen::Index implicit_rows_of(Eigen::Index contacts, const ImplicitSurfaceOptions& options);
-// Appends the touch's contact points and its signed pairs.
+// Training points a touch adds (its contact points, their signed pairs, its swept points).
+Eigen::Index implicit_rows_of(const ImplicitTouch& touch, const ImplicitSurfaceOptions& options);
+// Appends the touch's contact points, their signed pairs, then its swept points.
 void append_implicit_training(const ImplicitTouch& touch, const Eigen::MatrixX3d& normals,
                               const ImplicitSurfaceOptions& options, ImplicitTraining& training);
 

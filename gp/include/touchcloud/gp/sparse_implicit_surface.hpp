@@ -19,7 +19,10 @@
 // normal) as two inducing points. Pairs on both sides are what let the field
 // change sign across the surface (kernels centred on the surface alone are
 // even about it). A site, once chosen, stays: a touch on new ground adds
-// sites by extending L_uu and A by rows.
+// sites by extending L_uu and A by rows. A touch's swept points (the space
+// its press came through) farther than the spacing from every site are
+// sites of their own, single inducing points: that space can lie far from
+// any contact (a cup's mouth over its floor).
 #pragma once
 
 #include <cstddef>
@@ -55,7 +58,7 @@ class SparseImplicitSurface : public ImplicitTouches {
   Eigen::Index inducing_size() const { return m_; }
 
  private:
-  void add_sites(Eigen::Index from, Eigen::Index contacts);  // of the touch at rows [from, ...)
+  void add_sites(Eigen::Index from, const ImplicitTouch& touch);  // of the touch at rows [from, ...)
   void rebuild();                                            // L_uu, A, B from all points at h_
   bool extend_inducing(Eigen::Index from);                   // rows [from, m_) of u_; false: rebuild
   void add_columns(Eigen::Index from);                       // training rows [from, n)

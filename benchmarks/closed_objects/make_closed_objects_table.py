@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The shipped closed shapes (sample_clouds/closed_objects/) reconstructed
-by five methods with the same seeds: touched from above (at most --touches)
+by up to six methods with the same seeds: touched from above (at most --touches)
 as the height-field GP of the main job (pipelines/fox_mask_active.yaml, its
 max-variance choice) and as the implicit surface
 (pipelines/closed_object_active.yaml, its variance as a press from above
@@ -9,7 +9,9 @@ implicit surface with side_touch's choice (pipelines/closed_object_all_sides.yam
 by the Palm 2.0's 65 mm dome (scene.yaml), by a 20 mm fingertip dome
 (scene_fingertip.yaml), and by the Palm 2.0 as imperfect as the real one
 (pipelines/closed_object_all_sides_realistic.yaml on scene_realistic.yaml:
-the touches read from rendered images). Each run is scored against the whole closed mesh
+the touches read from rendered images); and, with --methods fingertip_whole,
+by the fingertip with the options that reconstruct whole objects
+(pipelines/closed_object_fingertip.yaml). Each run is scored against the whole closed mesh
 after every touch: Eq. 11 (estimate -> object, the mean chamfer), its 95th
 percentile, Hausdorff, completeness (object -> estimate), F-score and
 coverage at --fscore-mm, of the whole object and of what a press from above
@@ -63,7 +65,11 @@ METHODS = {
                             "scene_fingertip.yaml", True),
     "all_sides_realistic": ("implicit surface, all sides, realistic sensor",
                             "pipelines/closed_object_all_sides_realistic.yaml", "scene_realistic.yaml", True),
+    "fingertip_whole": ("whole object, 20 mm fingertip (closed_object_fingertip)",
+                        "pipelines/closed_object_fingertip.yaml", "scene_fingertip.yaml", True),
 }
+# What --methods is when not given: the five methods of the top-level table.
+DEFAULT_METHODS = ["height_field", "implicit", "all_sides", "all_sides_fingertip", "all_sides_realistic"]
 # summary.json metric (score.<name>), column title, decimals in results.md
 METRICS = [("chamfer_est_to_gt", "Eq. 11", 3), ("p95_est_to_gt", "p95", 2), ("hausdorff", "Hausdorff", 1),
            ("chamfer_gt_to_est", "completeness", 2), ("fscore", "F-score", 3), ("recall", "coverage", 3),
@@ -173,7 +179,7 @@ def plot(args, curves):
     for (shape, method), by_touch in curves.items():
         touches = sorted(by_touch)
         # a colour per shape, a line style per method
-        style = (":", "--", "-.", "-", "x-")[[name for name, _, _, _ in METHODS.values()].index(method)]
+        style = (":", "--", "-.", "-", "x-", "o-")[[name for name, _, _, _ in METHODS.values()].index(method)]
         for ax, name in zip(axes, ("chamfer_est_to_gt", "fscore")):
             ax.plot(touches, [statistics.fmean(by_touch[t][name]) for t in touches], style,
                     color=f"C{SHAPES.index(shape)}", label=f"{shape}, {method.split(' (')[0]}")
@@ -196,7 +202,8 @@ def main():
     parser.add_argument("--touchcloud", default="build/bin/touchcloud")
     parser.add_argument("--touches", type=int, default=24, help="touches from above (default 24)")
     parser.add_argument("--all-sides-touches", type=int, default=60, help="touches from any side (default 60)")
-    parser.add_argument("--methods", default=",".join(METHODS), help="of " + ", ".join(METHODS))
+    parser.add_argument("--methods", default=",".join(DEFAULT_METHODS),
+                        help="of " + ", ".join(METHODS) + " (default: all but fingertip_whole)")
     parser.add_argument("--seeds", default="1", help="e.g. 1-5 or 1,3 (default 1)")
     parser.add_argument("--shapes", default=",".join(SHAPES), help="of " + ", ".join(SHAPES))
     parser.add_argument("--fscore-mm", type=float, default=2.0, help="F-score and coverage threshold (mm)")

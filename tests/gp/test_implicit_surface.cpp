@@ -5,6 +5,7 @@
 // refuses (no points, no normals where the side cannot be told, bad normals).
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -26,6 +27,16 @@ gp::ImplicitSurface implicit_fitted(const std::vector<gp::ImplicitTouch>& touche
   gp::ImplicitSurface s(o);
   for (const auto& t : touches) s.add(t);
   return s;
+}
+
+// What the model says of a touch it refuses, or "accepted".
+std::string refusal(gp::ImplicitSurface& s, const gp::ImplicitTouch& t) {
+  try {
+    s.add(t);
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
+  return "accepted";
 }
 
 }  // namespace
@@ -149,14 +160,7 @@ TEST(ImplicitSurface, RefusesEmptyAndDegenerateTouches) {
   EXPECT_THROW(s.mean(one_row(Eigen::Vector3d::Zero())), InputError);
   gp::ImplicitTouch empty;
   EXPECT_THROW(s.add(empty), InputError);
-  auto message = [&](const gp::ImplicitTouch& t) {
-    try {
-      s.add(t);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  auto message = [&](const gp::ImplicitTouch& t) { return refusal(s, t); };
   gp::ImplicitTouch line;
   line.points_mm.resize(5, 3);
   for (int i = 0; i < 5; ++i) line.points_mm.row(i) << i, 2 * i, 3;
@@ -221,14 +225,7 @@ TEST(ImplicitSurface, RefusesSweptPointsInsideOrNotFinite) {
   EXPECT_THROW(gp::add_swept_approach(t, {0, 0, 60}, {0, 0, 2}, 20, 4), InputError) << "not a unit direction";
   gp::add_swept_approach(t, {5, -3, 60}, {0, 0, 1}, 20, 4);
   ASSERT_EQ(t.free_mm.rows(), 5);
-  auto message = [&](const gp::ImplicitTouch& touch) {
-    try {
-      s.add(touch);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  auto message = [&](const gp::ImplicitTouch& touch) { return refusal(s, touch); };
   gp::ImplicitTouch bad = t;
   bad.free_distance_mm[2] = 0;
   EXPECT_NE(message(bad).find("touch 1: swept point 2 has distance 0"), std::string::npos) << message(bad);

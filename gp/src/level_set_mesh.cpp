@@ -1,6 +1,9 @@
 #include "touchcloud/gp/level_set_mesh.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
@@ -11,7 +14,10 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
+#include <boost/pending/disjoint_sets.hpp>
+
 #include "touchcloud/error.hpp"
+#include "touchcloud/scoring/nearest_point_index.hpp"
 
 namespace touchcloud::gp {
 
@@ -106,6 +112,42 @@ scoring::TriangleMesh zero_level_set(const SampleGrid& grid, const Eigen::Vector
                               static_cast<std::uint32_t>(corners->GetId(1))});
   }
   return mesh;
+}
+
+std::size_t drop_unsupported_pieces(scoring::TriangleMesh& mesh, const Eigen::MatrixX3d& support, double support_mm) {
+  if (support.rows() == 0) throw InputError("unsupported pieces: no touched points to support the mesh");
+  if (!(support_mm > 0) || !std::isfinite(support_mm))
+    throw InputError("unsupported pieces: the support distance must be finite and > 0 mm");
+  if (mesh.triangles.empty()) return 0;
+  const std::size_t n = mesh.vertices.size();
+  boost::disjoint_sets_with_storage<> pieces(n);
+  for (const auto& t : mesh.triangles) {
+    pieces.union_set(t[0], t[1]);
+    pieces.union_set(t[0], t[2]);
+  }
+  scoring::Points points(static_cast<std::size_t>(support.rows()));
+  for (Eigen::Index i = 0; i < support.rows(); ++i) points[static_cast<std::size_t>(i)] = support.row(i).transpose();
+  const std::vector<double> nearest = scoring::NearestPointIndex(std::move(points), 1).nearest_distances(mesh.vertices, 1);
+  std::vector<bool> supported(n, false);
+  for (std::size_t v = 0; v < n; ++v)
+    if (nearest[v] <= support_mm) supported[pieces.find_set(v)] = true;
+  scoring::TriangleMesh kept;
+  std::vector<std::int64_t> remap(n, -1);
+  for (const auto& t : mesh.triangles) {
+    if (!supported[pieces.find_set(t[0])]) continue;
+    std::array<std::uint32_t, 3> tri{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (remap[t[k]] < 0) {
+        remap[t[k]] = static_cast<std::int64_t>(kept.vertices.size());
+        kept.vertices.push_back(mesh.vertices[t[k]]);
+      }
+      tri[k] = static_cast<std::uint32_t>(remap[t[k]]);
+    }
+    kept.triangles.push_back(tri);
+  }
+  const std::size_t dropped = mesh.triangles.size() - kept.triangles.size();
+  mesh = std::move(kept);
+  return dropped;
 }
 
 }  // namespace touchcloud::gp

@@ -87,6 +87,7 @@ class GpisSurface final : public Stage {
   CloudConstPtr cloud_;
   double swept_mm_ = 0;
   double swept_step_mm_ = 4.0;
+  double piece_support_mm_ = 0;
   bool plan_gaps_ = false;
   std::vector<Eigen::Vector3d> gaps_;  // plan_gaps: the last mesh's jump triangles' centroids
   CloudConstPtr candidates_;
@@ -166,6 +167,10 @@ class GpisSurface final : public Stage {
              "of each triangle dropped where the field jumps: where the quadrics and the GP's mean disagree, a face "
              "no touch has found yet (a cup's inner wall behind its touched outer wall) which the mesh leaves out; "
              "false: the candidates are the cloud");
+    p.add("piece_support_mm", piece_support_mm_, 0.0).unit("mm").at_least(0.0)
+        .doc("a connected piece of the mesh none of whose vertices lies within this of a touched point is dropped "
+             "(gp::drop_unsupported_pieces): the GP's mean alone put it there, far from every touch (counted in "
+             "dropped_unsupported_triangles); 0: every piece is kept");
     p.add("mesh", mesh_path_).output_file()
         .doc("PLY file in the output folder for the last mesh, with each vertex's variance (mm^2); not set: none");
   }
@@ -207,6 +212,8 @@ class GpisSurface final : public Stage {
     ports.metric("noise_variance_mm2", "mm^2", "noise variance of the signed distance");
     ports.metric("jitter_mm2", "mm^2", "jitter added to the covariance's diagonal to factorise it");
     ports.metric("mesh_triangles", "", "triangles of the zero level set");
+    ports.metric("dropped_unsupported_triangles", "",
+                 "piece_support_mm: triangles of pieces of the mesh farther than that from every touched point");
     ports.metric("quadric_patches", "", "local_quadrics: patches fitted to the touched points");
     ports.metric("dropped_jump_triangles", "", "local_quadrics: triangles dropped where the field jumps");
     ports.metric("dropped_free_space_triangles", "", "local_quadrics: triangles dropped where a gel lay");
@@ -262,6 +269,9 @@ class GpisSurface final : public Stage {
       if (table_z_mm_) gp::clip_above_table(grid, *table_z_mm_, values);
       mesh_ = gp::zero_level_set(grid, values);
     }
+    if (piece_support_mm_ > 0)
+      ctx.metric("dropped_unsupported_triangles",
+                 static_cast<double>(gp::drop_unsupported_pieces(mesh_, contacts, piece_support_mm_)));
     if (mesh_.triangles.empty()) throw RunError("the implicit surface's zero level set does not cross its grid");
     ctx.metric("mesh_triangles", static_cast<double>(mesh_.triangles.size()));
     if (io.wants("surface")) {

@@ -2,7 +2,8 @@
 // vertices lie on it, the mesh is closed (every edge in two triangles) with
 // the Euler characteristic of its shape, and the implicit surfaces fitted to
 // touches of a sphere and a torus give closed meshes of genus 0 and 1 near
-// the true surfaces. Bad grids and values are refused.
+// the true surfaces. Bad grids and values are refused. A piece of the mesh
+// far from every touched point is dropped, and nothing else.
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -160,4 +161,36 @@ TEST(LevelSetMesh, TouchedSphereAndTorusAreClosed) {
     worst = std::max(worst, std::abs(tube - torus.minor_mm));
   }
   EXPECT_LT(worst, 0.5);
+}
+
+// Two spheres' level set, a body of 10 mm touched at six points and a
+// bubble of 3 mm touched nowhere, 12 mm from the nearest touched point:
+// with a support of 10 mm the bubble goes and the body is kept as it was,
+// vertex for vertex; with 15 mm both stay.
+TEST(LevelSetMesh, PiecesFarFromEveryTouchAreDropped) {
+  Eigen::MatrixX3d corners(2, 3);
+  corners << -12, -12, -12, 30, 12, 12;
+  const gp::SampleGrid grid = gp::grid_around(corners, 2.0, 64);
+  const Eigen::MatrixX3d q = grid.sample_points();
+  const Eigen::VectorXd body = q.rowwise().norm().array() - 10.0;
+  const Eigen::VectorXd bubble = (q.rowwise() - Eigen::RowVector3d(25, 0, 0)).rowwise().norm().array() - 3.0;
+  const scoring::TriangleMesh body_only = gp::zero_level_set(grid, body);
+  const scoring::TriangleMesh both = gp::zero_level_set(grid, body.cwiseMin(bubble));
+  ASSERT_GT(both.triangles.size(), body_only.triangles.size());
+  Eigen::MatrixX3d touched(6, 3);
+  touched << 10, 0, 0, -10, 0, 0, 0, 10, 0, 0, -10, 0, 0, 0, 10, 0, 0, -10;
+
+  scoring::TriangleMesh kept = both;
+  EXPECT_EQ(gp::drop_unsupported_pieces(kept, touched, 15.0), 0u);
+  EXPECT_EQ(kept.triangles.size(), both.triangles.size());
+
+  EXPECT_EQ(gp::drop_unsupported_pieces(kept, touched, 10.0), both.triangles.size() - body_only.triangles.size());
+  ASSERT_EQ(kept.vertices.size(), body_only.vertices.size());
+  double farthest = 0;
+  for (const auto& v : kept.vertices) farthest = std::max(farthest, std::abs(v.norm() - 10.0));
+  EXPECT_LT(farthest, 0.01);
+  EXPECT_EQ(topology(kept).open_edges, 0u);
+
+  EXPECT_THROW(gp::drop_unsupported_pieces(kept, Eigen::MatrixX3d(0, 3), 5.0), InputError);
+  EXPECT_THROW(gp::drop_unsupported_pieces(kept, touched, 0.0), InputError);
 }

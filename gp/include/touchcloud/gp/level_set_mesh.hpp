@@ -43,4 +43,12 @@ void clip_above_table(const SampleGrid& grid, double table_z_mm, Eigen::VectorXd
 // match, or a value that is not finite; an empty mesh when nothing crosses.
 scoring::TriangleMesh zero_level_set(const SampleGrid& grid, const Eigen::VectorXd& values);
 
+// Drops each connected piece of `mesh` (triangles joined through shared
+// vertices) none of whose vertices lies within `support_mm` of a row of
+// `support` (the touched points): a piece the smooth field alone put far
+// from every touch, a bubble of the GP's mean. Returns the triangles
+// dropped; the rest keep their order. InputError for no support points, a
+// support_mm that is not finite and > 0, or a point that is not finite.
+std::size_t drop_unsupported_pieces(scoring::TriangleMesh& mesh, const Eigen::MatrixX3d& support, double support_mm);
+
 }  // namespace touchcloud::gp

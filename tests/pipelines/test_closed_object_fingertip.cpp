@@ -4,6 +4,7 @@
 // given on the command line (what the docs and the closed-object table
 // claim), here in the mug's first four touches with the 20 mm fingertip.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -28,12 +29,17 @@ TEST(ClosedObjectFingertip, IsTheAllSidesPipelineWithItsOptions) {
   run("closed_object_fingertip.yaml", "fingertip", {});
   run("closed_object_all_sides.yaml", "all_sides",
       {"plan.oblique_deg=[20,40,60,75]", "plan.table_clearance_mm=10", "fit.surface=local_quadrics",
-       "fit.quadric_edge_deg=60", "fit.free_support_mm=3.5", "fit.plan_gaps=true", "fit.swept_mm=40"});
+       "fit.quadric_edge_deg=60", "fit.free_support_mm=3.5", "fit.plan_gaps=true", "fit.swept_mm=40",
+       "fit.piece_support_mm=10"});
   for (const char* file : {"mug_surface.pcd", "mug_mesh.ply", "mug_touch_points.pcd"}) {
     const std::string a = touchcloud::test::read_file(dir / "fingertip" / file);
     ASSERT_FALSE(a.empty()) << file;
     EXPECT_TRUE(a == touchcloud::test::read_file(dir / "all_sides" / file)) << file << " differs";
   }
+  // The pieces far from every touch are counted (the metric is there with the option only).
+  const auto summary = nlohmann::json::parse(touchcloud::test::read_file(dir / "fingertip/summary.json"));
+  ASSERT_TRUE(summary["metrics"].contains("fit.dropped_unsupported_triangles")) << summary["metrics"].dump();
+  EXPECT_GE(summary["metrics"]["fit.dropped_unsupported_triangles"]["value"].get<double>(), 0);
   // Without the swept approaches the surface is another.
   run("closed_object_fingertip.yaml", "unswept", {"fit.swept_mm=0"});
   EXPECT_FALSE(touchcloud::test::read_file(dir / "fingertip/mug_mesh.ply") ==

@@ -114,6 +114,28 @@ scoring::TriangleMesh zero_level_set(const SampleGrid& grid, const Eigen::Vector
   return mesh;
 }
 
+scoring::TriangleMesh kept_triangles(const scoring::TriangleMesh& mesh, const std::vector<bool>& keep) {
+  if (keep.size() != mesh.triangles.size())
+    throw InputError("kept triangles: " + std::to_string(keep.size()) + " flags for " +
+                     std::to_string(mesh.triangles.size()) + " triangles");
+  scoring::TriangleMesh kept;
+  std::vector<std::int64_t> remap(mesh.vertices.size(), -1);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (!keep[t]) continue;
+    std::array<std::uint32_t, 3> tri{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.triangles[t][k];
+      if (remap[v] < 0) {
+        remap[v] = static_cast<std::int64_t>(kept.vertices.size());
+        kept.vertices.push_back(mesh.vertices[v]);
+      }
+      tri[k] = static_cast<std::uint32_t>(remap[v]);
+    }
+    kept.triangles.push_back(tri);
+  }
+  return kept;
+}
+
 std::size_t drop_unsupported_pieces(scoring::TriangleMesh& mesh, const Eigen::MatrixX3d& support, double support_mm) {
   if (support.rows() == 0) throw InputError("unsupported pieces: no touched points to support the mesh");
   if (!(support_mm > 0) || !std::isfinite(support_mm))
@@ -131,20 +153,9 @@ std::size_t drop_unsupported_pieces(scoring::TriangleMesh& mesh, const Eigen::Ma
   std::vector<bool> supported(n, false);
   for (std::size_t v = 0; v < n; ++v)
     if (nearest[v] <= support_mm) supported[pieces.find_set(v)] = true;
-  scoring::TriangleMesh kept;
-  std::vector<std::int64_t> remap(n, -1);
-  for (const auto& t : mesh.triangles) {
-    if (!supported[pieces.find_set(t[0])]) continue;
-    std::array<std::uint32_t, 3> tri{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      if (remap[t[k]] < 0) {
-        remap[t[k]] = static_cast<std::int64_t>(kept.vertices.size());
-        kept.vertices.push_back(mesh.vertices[t[k]]);
-      }
-      tri[k] = static_cast<std::uint32_t>(remap[t[k]]);
-    }
-    kept.triangles.push_back(tri);
-  }
+  std::vector<bool> keep(mesh.triangles.size());
+  for (std::size_t t = 0; t < keep.size(); ++t) keep[t] = supported[pieces.find_set(mesh.triangles[t][0])];
+  scoring::TriangleMesh kept = kept_triangles(mesh, keep);
   const std::size_t dropped = mesh.triangles.size() - kept.triangles.size();
   mesh = std::move(kept);
   return dropped;

@@ -48,8 +48,7 @@ scoring::TriangleMesh local_quadric_mesh(const gp::SampleGrid& grid, const gp::L
   const Eigen::VectorXd at_centroid = field_at(centroids, quadrics, gp_mean, table_z_mm, threads);
   const double jump_mm = 0.5 * grid.spacing_mm;
 
-  scoring::TriangleMesh kept;
-  std::vector<std::int64_t> remap(all.vertices.size(), -1);
+  std::vector<bool> keep(all.triangles.size(), false);
   counts = {};
   for (std::size_t t = 0; t < all.triangles.size(); ++t) {
     if (std::abs(at_centroid[static_cast<Eigen::Index>(t)]) > jump_mm) {
@@ -61,18 +60,9 @@ scoring::TriangleMesh local_quadric_mesh(const gp::SampleGrid& grid, const gp::L
       ++counts.free_space;
       continue;
     }
-    std::array<std::uint32_t, 3> tri{};
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t v = all.triangles[t][static_cast<std::size_t>(k)];
-      if (remap[v] < 0) {
-        remap[v] = static_cast<std::int64_t>(kept.vertices.size());
-        kept.vertices.push_back(all.vertices[v]);
-      }
-      tri[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(remap[v]);
-    }
-    kept.triangles.push_back(tri);
+    keep[t] = true;
   }
-  return kept;
+  return gp::kept_triangles(all, keep);
 }
 
 }  // namespace touchcloud

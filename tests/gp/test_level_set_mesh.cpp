@@ -193,4 +193,5 @@ TEST(LevelSetMesh, PiecesFarFromEveryTouchAreDropped) {
 
   EXPECT_THROW(gp::drop_unsupported_pieces(kept, Eigen::MatrixX3d(0, 3), 5.0), InputError);
   EXPECT_THROW(gp::drop_unsupported_pieces(kept, touched, 0.0), InputError);
+  EXPECT_THROW(gp::kept_triangles(kept, std::vector<bool>(3, true)), InputError);
 }

@@ -3,6 +3,8 @@
 // library links VTK (target touchcloud_gp_level_set).
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "touchcloud/scoring/triangle_mesh.hpp"
@@ -42,6 +44,10 @@ void clip_above_table(const SampleGrid& grid, double table_z_mm, Eigen::VectorXd
 // inside the grid is closed. InputError for a value count that does not
 // match, or a value that is not finite; an empty mesh when nothing crosses.
 scoring::TriangleMesh zero_level_set(const SampleGrid& grid, const Eigen::VectorXd& values);
+
+// The triangles of `mesh` whose `keep` is true (one flag per triangle), in
+// their order, with the vertices they use, in the order of first use.
+scoring::TriangleMesh kept_triangles(const scoring::TriangleMesh& mesh, const std::vector<bool>& keep);
 
 // Drops each connected piece of `mesh` (triangles joined through shared
 // vertices) none of whose vertices lies within `support_mm` of a row of
